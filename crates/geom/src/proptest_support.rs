@@ -1,0 +1,1 @@
+//! Proptest strategies for geometry inputs (feature `proptest-support`).
