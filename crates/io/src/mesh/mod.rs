@@ -1,0 +1,156 @@
+//! Triangle-mesh import: Gmsh `.msh` (2.2 and 4.1, ASCII and binary), STL (ASCII and binary),
+//! Wavefront OBJ, GTS and INRIA/MEDIT `.mesh`, each read into a [`TriMesh`].
+//!
+//! [`read_mesh`] picks the reader from the file extension; each format also has its own
+//! function taking the file's contents and a name used in error messages.
+//!
+//! Common rules of every reader:
+//! - only triangles are kept; other elements (points, lines, quadrilaterals of a `.mesh`,
+//!   tetrahedra...) are skipped, and a file without any triangle is an error;
+//! - for the indexed formats (msh, OBJ, GTS, MEDIT), vertices that no triangle uses are
+//!   dropped, the others keep their order in the file (so a volume mesh gives its surface
+//!   without interior nodes); STL is a triangle soup and gives 3 unmerged vertices per
+//!   triangle, in file order (merging is the PFacet builder's job);
+//! - triangles keep the vertex order of the file (so its orientation);
+//! - the readers check structure (counts, indices, numbers), never geometry: degenerate
+//!   triangles are left to the PFacet builder;
+//! - no input makes them panic, declared counts are checked against the data before any
+//!   allocation, and a non-finite coordinate is an error naming its line (or byte offset).
+
+mod gts;
+mod medit;
+mod msh;
+mod msh_ascii;
+mod msh_binary;
+mod obj;
+mod stl;
+mod text;
+
+use std::path::{Path, PathBuf};
+
+use flexdem_geom::{TriMesh, Vec3};
+use thiserror::Error;
+
+pub use gts::read_gts;
+pub use medit::read_medit;
+pub use msh::read_msh;
+pub use obj::read_obj;
+pub use stl::read_stl;
+
+/// File extensions [`read_mesh`] understands, lower case, without the dot.
+pub const SUPPORTED_EXTENSIONS: [&str; 5] = ["msh", "stl", "obj", "gts", "mesh"];
+
+/// Why a mesh could not be read. Every variant names the file; text formats give the line,
+/// binary data the byte offset, and the message says what was expected and what was found.
+#[derive(Debug, Error)]
+pub enum MeshError {
+    /// The file could not be read.
+    #[error("{}: {source}", path.display())]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// The underlying error.
+        source: std::io::Error,
+    },
+    /// The extension names no supported format.
+    #[error(
+        "{}: unsupported mesh file extension {extension:?}; supported: .msh, .stl, .obj, .gts, .mesh",
+        path.display()
+    )]
+    UnsupportedExtension {
+        /// The file.
+        path: PathBuf,
+        /// Its extension (empty if it has none).
+        extension: String,
+    },
+    /// A text file (or the text part of a Gmsh file) is malformed at a line.
+    #[error("{file}:{line}: {message}")]
+    Text {
+        /// Name of the file (as given to the reader).
+        file: String,
+        /// Line number, 1-based.
+        line: usize,
+        /// What was expected and what was found.
+        message: String,
+    },
+    /// Binary data is malformed at a byte offset.
+    #[error("{file}: byte {offset}: {message}")]
+    Binary {
+        /// Name of the file (as given to the reader).
+        file: String,
+        /// Byte offset from the start of the file.
+        offset: usize,
+        /// What was expected and what was found.
+        message: String,
+    },
+    /// The file as a whole is malformed (for instance its size does not match its header).
+    #[error("{file}: {message}")]
+    File {
+        /// Name of the file (as given to the reader).
+        file: String,
+        /// What was expected and what was found.
+        message: String,
+    },
+}
+
+impl MeshError {
+    pub(crate) fn text(file: &str, line: usize, message: impl Into<String>) -> Self {
+        MeshError::Text { file: file.to_owned(), line, message: message.into() }
+    }
+
+    pub(crate) fn binary(file: &str, offset: usize, message: impl Into<String>) -> Self {
+        MeshError::Binary { file: file.to_owned(), offset, message: message.into() }
+    }
+
+    pub(crate) fn file(file: &str, message: impl Into<String>) -> Self {
+        MeshError::File { file: file.to_owned(), message: message.into() }
+    }
+}
+
+/// Reads a triangle mesh, choosing the format from the extension (case-insensitive): `.msh`
+/// (Gmsh 2.2 or 4.1, ASCII or binary), `.stl` (ASCII or binary), `.obj`, `.gts`, `.mesh`
+/// (INRIA/MEDIT). Error messages name the file as `path` displays.
+pub fn read_mesh(path: &Path) -> Result<TriMesh, MeshError> {
+    let extension =
+        path.extension().map(|e| e.to_string_lossy().to_ascii_lowercase()).unwrap_or_default();
+    if !SUPPORTED_EXTENSIONS.contains(&extension.as_str()) {
+        return Err(MeshError::UnsupportedExtension { path: path.to_owned(), extension });
+    }
+    let bytes =
+        std::fs::read(path).map_err(|source| MeshError::Io { path: path.to_owned(), source })?;
+    let name = path.display().to_string();
+    match extension.as_str() {
+        "msh" => read_msh(&bytes, &name),
+        "stl" => read_stl(&bytes, &name),
+        // Invalid UTF-8 (a Latin-1 comment, say) becomes U+FFFD: harmless in comments, and a
+        // number containing it fails to parse with its line number.
+        "obj" => read_obj(&String::from_utf8_lossy(&bytes), &name),
+        "gts" => read_gts(&String::from_utf8_lossy(&bytes), &name),
+        _ => read_medit(&String::from_utf8_lossy(&bytes), &name),
+    }
+}
+
+/// Keeps only the vertices some triangle uses, in their original order, and renumbers the
+/// triangles. Callers check every index is `< vertices.len()` first; an index that is not
+/// (never produced by the readers) would be kept as is.
+pub(crate) fn drop_unused_vertices(vertices: &[Vec3], triangles: Vec<[usize; 3]>) -> TriMesh {
+    let mut used = vec![false; vertices.len()];
+    for triangle in &triangles {
+        for &v in triangle {
+            if let Some(flag) = used.get_mut(v) {
+                *flag = true;
+            }
+        }
+    }
+    let mut new_index = vec![usize::MAX; vertices.len()];
+    let mut kept = Vec::new();
+    for (old, (&vertex, &is_used)) in vertices.iter().zip(&used).enumerate() {
+        if is_used {
+            new_index[old] = kept.len();
+            kept.push(vertex);
+        }
+    }
+    let triangles =
+        triangles.into_iter().map(|t| t.map(|v| new_index.get(v).copied().unwrap_or(v))).collect();
+    TriMesh::new(kept, triangles)
+}
