@@ -1,3 +1,42 @@
 //! The flexdem contact law (paper §2–3): materials, stiffnesses (eq 3, 4, 8), the force and
 //! moment update of one contact or beam link with plastic limits and breakage (eq 1–2, 5–7),
-//! and energy terms. Pure functions over contact state; the engine only calls them.
+//! and energy terms. Pure functions over plain contact state; the engine only calls them.
+//!
+//! Conventions (see `docs/architecture.md`):
+//! - the normal n points **from body 1 to body 2**, the overlap δ > 0 when touching;
+//! - the normal force is a scalar, **compression positive**;
+//! - the stored shear force is the one acting **on body 2** (body 1 gets the opposite), and the
+//!   total contact force returned is the force on body 2, F2 = Fn·n + Fs;
+//! - a link's relative rotation is that of node 2 relative to node 1, and its moments are
+//!   reported as the moment on node 2 (node 1 gets the opposite).
+//!
+//! Modules: [`material`] (materials and validation), [`stiffness`] (eq 3, 4, 8), [`strength`]
+//! (eq 7), [`rotation`] (exact shear transport), [`frictional`] (non-cohesive contacts),
+//! [`link`] (beam links), [`energy`].
+
+pub mod energy;
+pub mod frictional;
+pub mod link;
+pub mod material;
+pub mod rotation;
+pub mod stiffness;
+pub mod strength;
+
+#[cfg(test)]
+mod test_support;
+
+pub use energy::{cap_dissipation, spring_energy, Dissipation};
+pub use frictional::{
+    update_frictional_contact, ContactForces, ContactKinematics, FrictionalContact,
+    FrictionalParams,
+};
+pub use link::{
+    update_link, LinkEvent, LinkForces, LinkKinematics, LinkKinematicsMode, LinkParams, LinkState,
+    LinkStatus,
+};
+pub use material::{effective_strength, FailureMode, Material, MaterialError};
+pub use rotation::{rotate_about_axis, rotate_between, rotation_vector, transport_tangent};
+pub use stiffness::{
+    beam_link_stiffness, contact_stiffness, friction_coefficient, ContactStiffness, LinkStiffness,
+};
+pub use strength::{contact_strength, link_strength, ContactStrength};

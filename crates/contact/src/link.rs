@@ -1,0 +1,442 @@
+//! Beam links (paper §3, model.md §3): the cohesive interaction between the two nodes of a
+//! connection, with stiffnesses of eq 8, the normal, shear and moment laws of eq 1, 2, 5, 6 and
+//! the limits of eq 7.
+//!
+//! # Kinematics
+//! L = |x2 − x1|, n = (x2 − x1)/L (from node 1 to node 2).
+//! - Normal (eq 1): Fn = kn·(L0 + e_p − L), zero at rest length, compression positive; e_p is
+//!   the plastic elongation (plastic mode only).
+//! - Shear (eq 2): the stored shear force (on node 2) is rotated onto the new tangent plane
+//!   (minimal rotation of the previous normal onto n, then a twist of spin·dt about n,
+//!   spin = n·(ω1 + ω2)/2), then Fs ← Fs − ks·α·u̇s·dt with u̇s the tangential part of
+//!   (v2 − v1) − (L/2)(ω1 + ω2) × n, the relative velocity of the link's midpoint seen from each
+//!   node. [`LinkKinematicsMode::Beam`] (α = 1) makes the link an exact small-rotation
+//!   Euler–Bernoulli frame element (reference §5.4); [`LinkKinematicsMode::Yade`] uses
+//!   α = 2r/L, YADE's `avoidGranularRatcheting`, a softer shear term (one-element cantilever
+//!   tip deflection PL³/(4EI) + PL³/(12αEI) instead of PL³/(3EI)).
+//! - Moments (eq 5, 6), when `moments` is on and the link is cohesive: θ = rotation vector of
+//!   q_rel = (q2·q2⁰⁻¹)·(q1·q1⁰⁻¹)⁻¹, angle in (−π, π], the total rotation of node 2 relative to
+//!   node 1 since the link was made, minus the plastic rotation; twist θt = (θ·n)n, bending
+//!   θb = θ − θt. Moment on node 2: Mt = −kt·θt, Mb = −kb·θb; node 1 gets the opposite.
+//! - Forces: node 2 gets F2 = Fn·n + Fs, node 1 gets −F2; the shear force acts at the
+//!   midpoint c, so node i also gets the torque (c − x_i) × F_i = −(L/2) n × Fs (the same on both
+//!   nodes), plus its moment.
+//!
+//! # Limits (eq 7) and failure
+//! - Plastic: tension capped at σn·A with the excess going into e_p (unloading is elastic);
+//!   |Fs| capped at Fn·tanφ + σs·A; |Mt| and |Mb| capped at their limits with the excess going
+//!   into the plastic rotation (stored in node 1's co-rotating frame, so it turns with the link).
+//!   A plastic link never breaks.
+//! - Fragile: tension above σn·A breaks the link for good ([`LinkStatus::Broken`], all forces
+//!   zero from then on). A shear force above Fn·tanφ + σs·A **or a moment above its limit**
+//!   makes the link lose its cohesion ([`LinkStatus::Frictional`]): from then on it is a
+//!   compression-only spring around L0 with Coulomb friction (|Fs| ≤ Fn·tanφ) and no moments,
+//!   which breaks as soon as it goes into tension (as YADE erases it). A moment failure is a
+//!   cohesion failure like a shear failure: the nodes are still in contact, only the bond is
+//!   gone. When cohesion is lost while in tension, the link is broken in the same step.
+//!
+//! # Energy
+//! Elastic energy Fn²/(2kn) + |Fs|²/(2α·ks) + |Mt|²/(2kt) + |Mb|²/(2kb): in yade mode the shear
+//! spring's effective stiffness is α·ks (the work done on the link is |Fs|·|u̇s|dt, its force
+//! grows by α·ks·|u̇s|dt). Caps dissipate (|F_trial| − |F_cap|)·|F_cap|/k; breakage releases
+//! the elastic energy lost.
+
+use crate::energy::{cap_dissipation, spring_energy, Dissipation};
+use crate::material::{FailureMode, Material};
+use crate::rotation::{rotation_vector, transport_tangent};
+use crate::stiffness::{beam_link_stiffness, LinkStiffness};
+use crate::strength::{link_strength, ContactStrength};
+use flexdem_geom::{Real, Vec3};
+use nalgebra::UnitQuaternion;
+use serde::{Deserialize, Serialize};
+
+/// Shear kinematics of a link (model.md §3).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub enum LinkKinematicsMode {
+    /// Branch vectors of length L/2 from each node: an exact small-rotation Euler–Bernoulli
+    /// frame element (default).
+    #[default]
+    Beam,
+    /// YADE's kinematics: the tangential displacement scaled by α = 2r/L (softer in shear).
+    Yade,
+}
+
+/// Constants of a beam link.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct LinkParams {
+    /// kn, ks, kb, kt (eq 8).
+    pub stiffness: LinkStiffness,
+    /// Rest length L0 (m).
+    pub rest_length: Real,
+    /// Radius r of the connection (m).
+    pub radius: Real,
+    /// Limits of eq 7 and tanφ.
+    pub strength: ContactStrength,
+    /// Fragile or plastic at the limits.
+    pub failure: FailureMode,
+    /// Twisting and bending moments on (eq 5, 6).
+    pub moments: bool,
+    /// Shear kinematics.
+    pub mode: LinkKinematicsMode,
+}
+
+impl LinkParams {
+    /// A link of radius r and rest length L0 made of material m: stiffnesses of eq 8, limits of
+    /// eq 7 with R = r, failure mode and moments flag of the material.
+    pub fn from_material(
+        m: &Material,
+        radius: Real,
+        rest_length: Real,
+        mode: LinkKinematicsMode,
+    ) -> Self {
+        LinkParams {
+            stiffness: beam_link_stiffness(m, radius, rest_length),
+            rest_length,
+            radius,
+            strength: link_strength(m, radius),
+            failure: m.failure,
+            moments: m.moments,
+            mode,
+        }
+    }
+}
+
+/// Whether a link still holds.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub enum LinkStatus {
+    /// Intact cohesive beam.
+    #[default]
+    Cohesive,
+    /// Lost its cohesion after a shear or moment failure: compression-only frictional contact.
+    Frictional,
+    /// Broken for good: no forces.
+    Broken,
+}
+
+/// What happened to a link in one update.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub enum LinkEvent {
+    /// Nothing.
+    #[default]
+    None,
+    /// A fragile cohesive link exceeded its tensile limit and is now broken.
+    BrokeInTension,
+    /// A fragile link exceeded its shear or a moment limit and is now frictional.
+    LostCohesion,
+    /// A link without cohesion (lost now or before) went into tension and is now broken.
+    Separated,
+}
+
+/// State of a link, carried from step to step.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct LinkState {
+    /// Normal of the previous update (unit, node 1 → node 2).
+    pub normal: Vec3,
+    /// Shear force on node 2 (N), tangent to `normal`.
+    pub shear_force: Vec3,
+    /// Orientation q1⁰ of node 1 when the link was made.
+    pub q1_ref: UnitQuaternion<Real>,
+    /// Orientation q2⁰ of node 2 when the link was made.
+    pub q2_ref: UnitQuaternion<Real>,
+    /// Plastic elongation e_p (m): the normal force is kn·(L0 + e_p − L).
+    pub plastic_elongation: Real,
+    /// Plastic relative rotation (rad), in node 1's co-rotating frame: the world vector is
+    /// (q1·q1⁰⁻¹)·`plastic_rotation`.
+    pub plastic_rotation: Vec3,
+    /// Cohesive, frictional or broken.
+    pub status: LinkStatus,
+    /// Energy dissipated over the link's life.
+    pub dissipated: Dissipation,
+}
+
+impl LinkState {
+    /// A fresh cohesive link between nodes at x1, x2 with orientations q1, q2 (the references of
+    /// the relative rotation). Coincident nodes get the normal +x.
+    pub fn new(x1: Vec3, x2: Vec3, q1: UnitQuaternion<Real>, q2: UnitQuaternion<Real>) -> Self {
+        LinkState {
+            normal: (x2 - x1).try_normalize(0.0).unwrap_or_else(Vec3::x),
+            shear_force: Vec3::zeros(),
+            q1_ref: q1,
+            q2_ref: q2,
+            plastic_elongation: 0.0,
+            plastic_rotation: Vec3::zeros(),
+            status: LinkStatus::Cohesive,
+            dissipated: Dissipation::default(),
+        }
+    }
+}
+
+/// Kinematics of the two nodes at the end of the step (velocities over the step).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct LinkKinematics {
+    /// Position of node 1.
+    pub x1: Vec3,
+    /// Position of node 2.
+    pub x2: Vec3,
+    /// Velocity of node 1.
+    pub v1: Vec3,
+    /// Velocity of node 2.
+    pub v2: Vec3,
+    /// Angular velocity of node 1.
+    pub w1: Vec3,
+    /// Angular velocity of node 2.
+    pub w2: Vec3,
+    /// Orientation of node 1.
+    pub q1: UnitQuaternion<Real>,
+    /// Orientation of node 2.
+    pub q2: UnitQuaternion<Real>,
+}
+
+/// What one update of a link returns.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct LinkForces {
+    /// Force on node 1 (= −`force_on_2`).
+    pub force_on_1: Vec3,
+    /// Force on node 2: Fn·n + Fs.
+    pub force_on_2: Vec3,
+    /// Torque on node 1: −(L/2) n × Fs − (Mt + Mb).
+    pub torque_on_1: Vec3,
+    /// Torque on node 2: −(L/2) n × Fs + (Mt + Mb).
+    pub torque_on_2: Vec3,
+    /// Normal force Fn (compression positive).
+    pub normal_force: Real,
+    /// Shear force on node 2.
+    pub shear_force: Vec3,
+    /// Twisting moment Mt on node 2 (along n).
+    pub twist_moment: Vec3,
+    /// Bending moment Mb on node 2 (normal to n).
+    pub bending_moment: Vec3,
+    /// Elastic energy stored after the update.
+    pub elastic_energy: Real,
+    /// Energy dissipated in this update.
+    pub dissipated: Dissipation,
+    /// Breakage or cohesion loss in this update.
+    pub event: LinkEvent,
+}
+
+/// Trial (elastic) quantities of one step.
+struct Trial {
+    n: Vec3,
+    l: Real,
+    fn_: Real,
+    fs: Vec3,
+    ks: Real,
+}
+
+/// One step of a beam link (eq 1, 2, 5–8; see the module documentation for the kinematics,
+/// limits and failure rules). Updates `state` and returns the forces and torques on both nodes.
+pub fn update_link(
+    params: &LinkParams,
+    state: &mut LinkState,
+    kin: &LinkKinematics,
+    dt: Real,
+) -> LinkForces {
+    if state.status == LinkStatus::Broken {
+        return LinkForces::default();
+    }
+    let k = &params.stiffness;
+    let d = kin.x2 - kin.x1;
+    let l = d.norm();
+    let n = if l > 0.0 { d / l } else { state.normal };
+    let spin = 0.5 * n.dot(&(kin.w1 + kin.w2));
+    let rotated = transport_tangent(state.shear_force, state.normal, n, spin * dt);
+    let mut us = (kin.v2 - kin.v1) - (kin.w1 + kin.w2).cross(&n) * (0.5 * l);
+    us -= n * n.dot(&us);
+    let alpha = match params.mode {
+        LinkKinematicsMode::Yade if l > 0.0 => 2.0 * params.radius / l,
+        _ => 1.0,
+    };
+    let ks = k.ks * alpha;
+    state.normal = n;
+    let trial = Trial {
+        n,
+        l,
+        fn_: k.kn * (params.rest_length + state.plastic_elongation - l),
+        fs: rotated - us * (ks * dt),
+        ks,
+    };
+    match state.status {
+        LinkStatus::Cohesive => cohesive_step(params, state, kin, &trial),
+        _ => frictional_step(params, state, &trial, 0.0, false),
+    }
+}
+
+fn cohesive_step(p: &LinkParams, s: &mut LinkState, kin: &LinkKinematics, t: &Trial) -> LinkForces {
+    let k = &p.stiffness;
+    let lim = &p.strength;
+    let n = t.n;
+    // Moments (eq 5, 6) from the total relative rotation minus the plastic rotation.
+    let (mut mt, mut mb, theta, r1) = if p.moments {
+        let r1 = kin.q1 * s.q1_ref.inverse();
+        let r2 = kin.q2 * s.q2_ref.inverse();
+        let theta = rotation_vector(&(r2 * r1.inverse()));
+        let el = theta - r1 * s.plastic_rotation;
+        let tw = n * n.dot(&el);
+        (tw * -k.kt, (el - tw) * -k.kb, theta, r1)
+    } else {
+        (Vec3::zeros(), Vec3::zeros(), Vec3::zeros(), UnitQuaternion::identity())
+    };
+    let fs_trial_mag = t.fs.norm();
+    let (mt_mag, mb_mag) = (mt.norm(), mb.norm());
+    let e_trial = spring_energy(t.fn_, k.kn)
+        + spring_energy(fs_trial_mag, t.ks)
+        + spring_energy(mt_mag, k.kt)
+        + spring_energy(mb_mag, k.kb);
+    let fragile = p.failure == FailureMode::Fragile;
+    let mut diss = Dissipation::default();
+
+    // Tension (eq 7, first line).
+    let mut fn_ = t.fn_;
+    if let Some(tmax) = lim.tensile_force {
+        if -t.fn_ > tmax {
+            if fragile {
+                s.status = LinkStatus::Broken;
+                s.shear_force = Vec3::zeros();
+                diss.breakage = e_trial;
+                s.dissipated += diss;
+                return LinkForces {
+                    dissipated: diss,
+                    event: LinkEvent::BrokeInTension,
+                    ..Default::default()
+                };
+            }
+            fn_ = -tmax;
+            s.plastic_elongation = t.l - p.rest_length - tmax / k.kn;
+            diss.plastic += cap_dissipation(-t.fn_, tmax, k.kn);
+        }
+    }
+
+    // Shear and moment limits (eq 7, lines 2–4).
+    let shear_cap = lim.shear_limit(fn_).filter(|&c| fs_trial_mag > c);
+    let twist_cap = lim.twist_moment.filter(|&c| p.moments && mt_mag > c);
+    let bend_cap = lim.bending_moment.filter(|&c| p.moments && mb_mag > c);
+    if fragile && (shear_cap.is_some() || twist_cap.is_some() || bend_cap.is_some()) {
+        s.status = LinkStatus::Frictional;
+        return frictional_step(p, s, t, e_trial, true);
+    }
+    let mut fs = t.fs;
+    if let Some(c) = shear_cap {
+        fs = scale_to(t.fs, fs_trial_mag, c);
+        diss.plastic += cap_dissipation(fs_trial_mag, c, t.ks);
+    }
+    if let Some(c) = twist_cap {
+        mt = scale_to(mt, mt_mag, c);
+        diss.plastic += cap_dissipation(mt_mag, c, k.kt);
+    }
+    if let Some(c) = bend_cap {
+        mb = scale_to(mb, mb_mag, c);
+        diss.plastic += cap_dissipation(mb_mag, c, k.kb);
+    }
+    if twist_cap.is_some() || bend_cap.is_some() {
+        // New elastic rotation from the capped moments; the rest is plastic.
+        let el = -(mt * inv(k.kt) + mb * inv(k.kb));
+        s.plastic_rotation = r1.inverse() * (theta - el);
+    }
+    s.shear_force = fs;
+    s.dissipated += diss;
+    let fs_mag = fs.norm();
+    let elastic = spring_energy(fn_, k.kn)
+        + spring_energy(fs_mag, t.ks)
+        + spring_energy(mt.norm(), k.kt)
+        + spring_energy(mb.norm(), k.kb);
+    assemble(n, t.l, fn_, fs, mt, mb, elastic, diss, LinkEvent::None)
+}
+
+/// A link without cohesion: compression-only spring with Coulomb friction, no moments; broken
+/// when in tension. `losing` marks the step in which cohesion is lost (the energy released then,
+/// `e_trial` minus what remains, is counted as breakage rather than friction).
+fn frictional_step(
+    p: &LinkParams,
+    s: &mut LinkState,
+    t: &Trial,
+    e_trial: Real,
+    losing: bool,
+) -> LinkForces {
+    let k = &p.stiffness;
+    let mut diss = Dissipation::default();
+    let fs_trial_mag = t.fs.norm();
+    if t.fn_ < 0.0 {
+        s.status = LinkStatus::Broken;
+        s.shear_force = Vec3::zeros();
+        diss.breakage = if losing { e_trial } else { spring_energy(fs_trial_mag, t.ks) };
+        s.dissipated += diss;
+        return LinkForces { dissipated: diss, event: LinkEvent::Separated, ..Default::default() };
+    }
+    let cap = t.fn_ * p.strength.tan_phi;
+    let fs = if fs_trial_mag > cap {
+        if !losing {
+            diss.friction = cap_dissipation(fs_trial_mag, cap, t.ks);
+        }
+        scale_to(t.fs, fs_trial_mag, cap)
+    } else {
+        t.fs
+    };
+    let elastic = spring_energy(t.fn_, k.kn) + spring_energy(fs.norm(), t.ks);
+    let event = if losing {
+        diss.breakage = (e_trial - elastic).max(0.0);
+        LinkEvent::LostCohesion
+    } else {
+        LinkEvent::None
+    };
+    s.shear_force = fs;
+    s.dissipated += diss;
+    let z = Vec3::zeros();
+    assemble(t.n, t.l, t.fn_, fs, z, z, elastic, diss, event)
+}
+
+/// Forces and torques on both nodes from the link's Fn, Fs (on node 2) and moments (on node 2).
+fn assemble(
+    n: Vec3,
+    l: Real,
+    fn_: Real,
+    fs: Vec3,
+    mt: Vec3,
+    mb: Vec3,
+    elastic_energy: Real,
+    dissipated: Dissipation,
+    event: LinkEvent,
+) -> LinkForces {
+    let f2 = n * fn_ + fs;
+    let lever = n.cross(&fs) * (-0.5 * l);
+    let m = mt + mb;
+    LinkForces {
+        force_on_1: -f2,
+        force_on_2: f2,
+        torque_on_1: lever - m,
+        torque_on_2: lever + m,
+        normal_force: fn_,
+        shear_force: fs,
+        twist_moment: mt,
+        bending_moment: mb,
+        elastic_energy,
+        dissipated,
+        event,
+    }
+}
+
+/// `v` (of magnitude `mag`) scaled to magnitude `to`.
+#[inline]
+fn scale_to(v: Vec3, mag: Real, to: Real) -> Vec3 {
+    if mag > 0.0 {
+        v * (to / mag)
+    } else {
+        Vec3::zeros()
+    }
+}
+
+#[inline]
+fn inv(k: Real) -> Real {
+    if k > 0.0 {
+        1.0 / k
+    } else {
+        0.0
+    }
+}
+
+#[cfg(test)]
+#[path = "link_tests.rs"]
+mod tests;
+
+#[cfg(test)]
+#[path = "link_strength_tests.rs"]
+mod strength_tests;
