@@ -1,0 +1,132 @@
+//! Adjacency of a model in compressed sparse row form: node → connections, node → PFacets,
+//! connection → PFacets. The engine uses it for "elements sharing a node never pair" and for
+//! the one-contact-per-touching rule.
+
+use crate::Model;
+use serde::{Deserialize, Serialize};
+
+/// Rows of sorted `u32` lists in compressed sparse row form: row `i` is
+/// `items[offsets[i]..offsets[i + 1]]`.
+#[derive(Clone, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Csr {
+    /// Row starts into `items`; `offsets.len()` is the number of rows + 1.
+    pub offsets: Vec<u32>,
+    /// The items of all rows, each row sorted ascending.
+    pub items: Vec<u32>,
+}
+
+impl Csr {
+    /// Builds `rows` rows from `(row, item)` pairs (counting sort, O(rows + pairs)). Pairs
+    /// whose row is out of range are skipped. Each row is sorted; a pair given twice appears
+    /// twice.
+    pub fn from_pairs(rows: usize, pairs: impl Iterator<Item = (u32, u32)> + Clone) -> Csr {
+        let mut offsets = vec![0u32; rows + 1];
+        for (row, _) in pairs.clone() {
+            if (row as usize) < rows {
+                offsets[row as usize + 1] += 1;
+            }
+        }
+        for i in 0..rows {
+            offsets[i + 1] += offsets[i];
+        }
+        let mut fill = offsets.clone();
+        let mut items = vec![0u32; offsets[rows] as usize];
+        for (row, item) in pairs {
+            if (row as usize) < rows {
+                let slot = &mut fill[row as usize];
+                items[*slot as usize] = item;
+                *slot += 1;
+            }
+        }
+        for i in 0..rows {
+            items[offsets[i] as usize..offsets[i + 1] as usize].sort_unstable();
+        }
+        Csr { offsets, items }
+    }
+
+    /// Number of rows.
+    pub fn rows(&self) -> usize {
+        self.offsets.len().saturating_sub(1)
+    }
+
+    /// Row `i` (sorted); empty when `i` is out of range.
+    pub fn get(&self, i: usize) -> &[u32] {
+        if i + 1 < self.offsets.len() {
+            &self.items[self.offsets[i] as usize..self.offsets[i + 1] as usize]
+        } else {
+            &[]
+        }
+    }
+}
+
+/// Which elements touch which: node → connections, node → PFacets, connection → PFacets.
+/// Rows are indexed by particle id (free spheres have empty rows) and connection id.
+#[derive(Clone, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Adjacency {
+    /// The connections attached to each particle.
+    pub node_connections: Csr,
+    /// The PFacets having each particle as a node.
+    pub node_pfacets: Csr,
+    /// The PFacets having each connection as an edge.
+    pub connection_pfacets: Csr,
+}
+
+impl Model {
+    /// The model's adjacency (built in O(particles + connections + PFacets)). Meant for a
+    /// validated model: references out of range are skipped.
+    pub fn adjacency(&self) -> Adjacency {
+        let n = self.particles.len();
+        let conns = &self.connections;
+        let facets = &self.pfacets;
+        let node_connections = Csr::from_pairs(
+            n,
+            conns.iter().enumerate().flat_map(|(c, k)| k.nodes.map(|node| (node, c as u32))),
+        );
+        let node_pfacets = Csr::from_pairs(
+            n,
+            facets.iter().enumerate().flat_map(|(f, p)| p.nodes.map(|node| (node, f as u32))),
+        );
+        let connection_pfacets = Csr::from_pairs(
+            conns.len(),
+            facets.iter().enumerate().flat_map(|(f, p)| p.connections.map(|c| (c, f as u32))),
+        );
+        Adjacency { node_connections, node_pfacets, connection_pfacets }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    #[test]
+    fn csr_rows_are_sorted_and_complete() {
+        let pairs = [(2u32, 5u32), (0, 3), (2, 1), (0, 0), (9, 9)];
+        let csr = Csr::from_pairs(4, pairs.iter().copied());
+        assert_eq!(csr.rows(), 4);
+        assert_eq!(csr.get(0), &[0, 3]);
+        assert_eq!(csr.get(1), &[] as &[u32]);
+        assert_eq!(csr.get(2), &[1, 5]);
+        assert_eq!(csr.get(3), &[] as &[u32]);
+        assert_eq!(csr.get(4), &[] as &[u32], "out of range row is empty");
+        assert_eq!(Csr::default().get(0), &[] as &[u32]);
+    }
+
+    proptest! {
+        /// Row i of the CSR is exactly the sorted multiset of items paired with i.
+        #[test]
+        fn csr_matches_naive_lists(
+            rows in 0usize..12,
+            pairs in proptest::collection::vec((0u32..14, 0u32..50), 0..60),
+        ) {
+            let csr = Csr::from_pairs(rows, pairs.iter().copied());
+            prop_assert_eq!(csr.rows(), rows);
+            for r in 0..rows {
+                let mut expected: Vec<u32> =
+                    pairs.iter().filter(|p| p.0 as usize == r).map(|p| p.1).collect();
+                expected.sort_unstable();
+                prop_assert_eq!(csr.get(r), expected.as_slice());
+            }
+        }
+    }
+}

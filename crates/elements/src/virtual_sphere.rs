@@ -1,0 +1,254 @@
+//! Virtual spheres (paper §3–5): every contact on a structure is a contact with a sphere of
+//! the element's radius placed on the element's skeleton, whose motion is interpolated from
+//! the element's nodes and whose force is shared back among them.
+//!
+//! A [`Site`] says where on a body a contact sits: on a particle (a free sphere, or a node of
+//! a structure), on an edge (a connection, at weights `(1 − t, t)`), or on a face (a PFacet, at
+//! barycentric weights `(wa, wb, wc)`). The same weights interpolate the motion (eq 16) and
+//! share the force (eq 17), so the power the contact force delivers to the virtual sphere is
+//! the power delivered to the nodes.
+
+use flexdem_geom::{Real, Vec3};
+use serde::{Deserialize, Serialize};
+
+/// The canonical feature of the model a contact sits on. Features are what contacts are keyed
+/// by, so two elements reporting the same point of a structure report the same feature: a
+/// node shared by several connections is one `Particle`, an edge shared by two PFacets is one
+/// `Edge` (the connection), a face is its PFacet.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+pub enum Feature {
+    /// A particle: a free sphere, or a node of a structure (the vertex feature).
+    Particle(u32),
+    /// A connection (cylinder), or the edge of PFacets it is shared by.
+    Edge(u32),
+    /// A PFacet's face.
+    Face(u32),
+    /// A wall.
+    Wall(u32),
+}
+
+impl Feature {
+    /// Dimension of the feature's skeleton: 0 for particles (and walls' contact points),
+    /// 1 for edges, 2 for faces.
+    pub fn dimension(&self) -> u8 {
+        match self {
+            Feature::Particle(_) | Feature::Wall(_) => 0,
+            Feature::Edge(_) => 1,
+            Feature::Face(_) => 2,
+        }
+    }
+}
+
+/// Where a contact sits on one body: its feature, the nodes (particles) that carry it and
+/// their weights. Unused node slots have weight 0 and node 0.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Site {
+    /// The feature the contact point lies on.
+    pub feature: Feature,
+    /// The particles carrying the site: 1 for a particle, 2 for an edge, 3 for a face,
+    /// 0 for a wall.
+    pub nodes: [u32; 3],
+    /// Interpolation and distribution weights, summing to 1 over the used slots.
+    pub weights: [Real; 3],
+    /// Radius of the (virtual) sphere: the particle's or the element's radius.
+    pub radius: Real,
+}
+
+impl Site {
+    /// A site on particle `id` (a free sphere or a node) of radius `radius`.
+    pub fn particle(id: u32, radius: Real) -> Self {
+        Site { feature: Feature::Particle(id), nodes: [id, 0, 0], weights: [1.0, 0.0, 0.0], radius }
+    }
+
+    /// A site on connection `connection` between particles `nodes` at parameter `t` (the
+    /// point `(1 − t)·x0 + t·x1`).
+    pub fn edge(connection: u32, nodes: [u32; 2], t: Real, radius: Real) -> Self {
+        Site {
+            feature: Feature::Edge(connection),
+            nodes: [nodes[0], nodes[1], 0],
+            weights: [1.0 - t, t, 0.0],
+            radius,
+        }
+    }
+
+    /// A site on the face of PFacet `pfacet` with nodes `nodes` at barycentric weights
+    /// `weights` (paper eq 15).
+    pub fn face(pfacet: u32, nodes: [u32; 3], weights: [Real; 3], radius: Real) -> Self {
+        Site { feature: Feature::Face(pfacet), nodes, weights, radius }
+    }
+
+    /// A site on wall `wall` (no nodes: walls are kinematic).
+    pub fn wall(wall: u32) -> Self {
+        Site { feature: Feature::Wall(wall), nodes: [0; 3], weights: [0.0; 3], radius: 0.0 }
+    }
+
+    /// Number of node slots in use: 1, 2, 3, or 0 for a wall.
+    pub fn node_count(&self) -> usize {
+        match self.feature {
+            Feature::Particle(_) => 1,
+            Feature::Edge(_) => 2,
+            Feature::Face(_) => 3,
+            Feature::Wall(_) => 0,
+        }
+    }
+}
+
+/// Position and velocity of a virtual sphere.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct VirtualSphere {
+    /// Centre on the element's skeleton.
+    pub center: Vec3,
+    /// Translational velocity.
+    pub velocity: Vec3,
+    /// Angular velocity.
+    pub angular_velocity: Vec3,
+}
+
+/// Read-only view of the particles' kinematic state, indexed by particle id.
+#[derive(Clone, Copy, Debug)]
+pub struct Kinematics<'a> {
+    /// Positions.
+    pub pos: &'a [Vec3],
+    /// Velocities.
+    pub vel: &'a [Vec3],
+    /// Angular velocities.
+    pub ang_vel: &'a [Vec3],
+}
+
+/// The virtual sphere of a particle, edge or face site, from its nodes' state.
+///
+/// - particle: the particle itself;
+/// - edge at `t`, axis `s = x1 − x0`, `L = |s|` (paper §3): `P = (1 − t)x0 + t·x1`,
+///   `v = (1 − t)v0 + t·v1`, `ω = [((1 − t)ω0 + tω1)·ŝ] ŝ + s × (v1 − v0)/L²` — the axial spin
+///   interpolated plus the rigid rotation rate of the axis (YADE omits the `1/L²`);
+/// - face at weights `w` (paper eq 16): `P = Σ wᵢxᵢ`, `v = Σ wᵢvᵢ`, `ω = Σ wᵢωᵢ`.
+///
+/// For a rigid motion of the nodes (`vᵢ = V + Ω × xᵢ`, `ωᵢ = Ω`) this returns `V + Ω × P`
+/// and `Ω`. Wall sites have no nodes and return zeros (the engine handles walls).
+pub fn virtual_sphere(site: &Site, k: &Kinematics<'_>) -> VirtualSphere {
+    match site.feature {
+        Feature::Particle(_) => {
+            let i = site.nodes[0] as usize;
+            VirtualSphere { center: k.pos[i], velocity: k.vel[i], angular_velocity: k.ang_vel[i] }
+        }
+        Feature::Edge(_) => {
+            let (i0, i1) = (site.nodes[0] as usize, site.nodes[1] as usize);
+            let [w0, w1, _] = site.weights;
+            let center = k.pos[i0] * w0 + k.pos[i1] * w1;
+            let velocity = k.vel[i0] * w0 + k.vel[i1] * w1;
+            let angular_velocity = edge_angular_velocity(
+                &(k.pos[i1] - k.pos[i0]),
+                &(k.vel[i1] - k.vel[i0]),
+                &(k.ang_vel[i0] * w0 + k.ang_vel[i1] * w1),
+            );
+            VirtualSphere { center, velocity, angular_velocity }
+        }
+        Feature::Face(_) => {
+            let mut vs = VirtualSphere {
+                center: Vec3::zeros(),
+                velocity: Vec3::zeros(),
+                angular_velocity: Vec3::zeros(),
+            };
+            for slot in 0..3 {
+                let (i, w) = (site.nodes[slot] as usize, site.weights[slot]);
+                vs.center += k.pos[i] * w;
+                vs.velocity += k.vel[i] * w;
+                vs.angular_velocity += k.ang_vel[i] * w;
+            }
+            vs
+        }
+        Feature::Wall(_) => VirtualSphere {
+            center: Vec3::zeros(),
+            velocity: Vec3::zeros(),
+            angular_velocity: Vec3::zeros(),
+        },
+    }
+}
+
+/// Angular velocity of a virtual sphere on a segment with axis `s` whose ends move apart at
+/// `dv = v1 − v0`, given the interpolated node spin `spin`: `(spin·ŝ)ŝ + s × dv / |s|²`.
+/// A zero-length axis keeps the interpolated spin.
+fn edge_angular_velocity(s: &Vec3, dv: &Vec3, spin: &Vec3) -> Vec3 {
+    let l2 = s.norm_squared();
+    if !(l2 > Real::MIN_POSITIVE) {
+        return *spin;
+    }
+    s * (spin.dot(s) / l2) + s.cross(dv) / l2
+}
+
+/// The geometry and kinematics of a contact between two (real or virtual) spheres.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ContactGeometry {
+    /// Unit normal from sphere 1 to sphere 2.
+    pub normal: Vec3,
+    /// Overlap `δ = r1 + r2 − |P2 − P1|` (positive when touching).
+    pub overlap: Real,
+    /// Contact point `c = P1 + (r1 − δ/2)·n`, in the middle of the overlap.
+    pub point: Vec3,
+    /// Velocity of the contact point on sphere 2 minus on sphere 1:
+    /// `(v2 + ω2 × (c − P2)) − (v1 + ω1 × (c − P1))`.
+    pub relative_velocity: Vec3,
+    /// Mean spin about the normal, `n·(ω1 + ω2)/2`, which turns the tangent plane.
+    pub spin_about_normal: Real,
+}
+
+/// Contact geometry of two spheres (centres `s1.center`, `s2.center`, radii `r1`, `r2`).
+///
+/// When the centres coincide to round-off (skeletons crossing), the normal is
+/// `fallback_normal` (the previous step's normal, or the element's face normal): the
+/// direction is then a choice, never NaN.
+pub fn contact_geometry(
+    s1: &VirtualSphere,
+    r1: Real,
+    s2: &VirtualSphere,
+    r2: Real,
+    fallback_normal: &Vec3,
+) -> ContactGeometry {
+    let d = s2.center - s1.center;
+    let dist = d.norm();
+    let scale = r1 + r2 + s1.center.abs().max() + s2.center.abs().max();
+    let normal = if dist > 1e-14 * scale { d / dist } else { *fallback_normal };
+    let overlap = r1 + r2 - dist;
+    let point = s1.center + normal * (r1 - 0.5 * overlap);
+    let v1 = s1.velocity + s1.angular_velocity.cross(&(point - s1.center));
+    let v2 = s2.velocity + s2.angular_velocity.cross(&(point - s2.center));
+    ContactGeometry {
+        normal,
+        overlap,
+        point,
+        relative_velocity: v2 - v1,
+        spin_about_normal: 0.5 * normal.dot(&(s1.angular_velocity + s2.angular_velocity)),
+    }
+}
+
+/// Force and torque a contact puts on one node.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NodeLoad {
+    /// Particle id.
+    pub node: u32,
+    /// Force on the node.
+    pub force: Vec3,
+    /// Torque on the node.
+    pub torque: Vec3,
+}
+
+/// Shares a force `force` acting at `point` on the virtual sphere of `site` (centre `center`)
+/// among the site's nodes (paper eq 17): node `k` receives `wₖ·F` and `wₖ·(c − P) × F`, the
+/// moment of `F` about the virtual sphere's centre shared with the same weights. The node
+/// forces sum to `F` and their moments about any point `O` sum to `(c − O) × F`, because
+/// `Σ wₖxₖ = P`. Unused slots (and walls) get zero loads.
+pub fn distribute_force(site: &Site, center: &Vec3, point: &Vec3, force: &Vec3) -> [NodeLoad; 3] {
+    let torque = (point - center).cross(force);
+    let n = site.node_count();
+    std::array::from_fn(|slot| {
+        if slot < n {
+            let w = site.weights[slot];
+            NodeLoad { node: site.nodes[slot], force: force * w, torque: torque * w }
+        } else {
+            NodeLoad { node: site.nodes[slot], force: Vec3::zeros(), torque: Vec3::zeros() }
+        }
+    })
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,128 @@
+use super::*;
+use proptest::prelude::*;
+
+fn v3() -> impl Strategy<Value = Vec3> {
+    prop::array::uniform3(-2.0..2.0f64).prop_map(Vec3::from)
+}
+
+/// A site on 1, 2 or 3 of four particles, with random positive weights summing to 1.
+fn site() -> impl Strategy<Value = Site> {
+    (0usize..3, prop::array::uniform3(0.01..1.0f64), 0.001..0.1f64).prop_map(|(kind, w, r)| {
+        match kind {
+            0 => Site::particle(2, r),
+            1 => Site::edge(7, [0, 3], w[0], r),
+            _ => {
+                let s = w[0] + w[1] + w[2];
+                Site::face(4, [1, 3, 0], [w[0] / s, w[1] / s, w[2] / s], r)
+            }
+        }
+    })
+}
+
+fn rigid_motion(pos: &[Vec3], v: &Vec3, omega: &Vec3) -> (Vec<Vec3>, Vec<Vec3>) {
+    let vel = pos.iter().map(|x| v + omega.cross(x)).collect();
+    let ang = pos.iter().map(|_| *omega).collect();
+    (vel, ang)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    /// Eq 17 and the moment sharing: node forces sum to F, and the node loads have the same
+    /// moment as F applied at the contact point, about any point.
+    #[test]
+    fn distribution_balances_force_and_moment(
+        site in site(),
+        pos in prop::array::uniform4(v3()),
+        point in v3(),
+        force in v3(),
+        origin in v3(),
+    ) {
+        let zeros = [Vec3::zeros(); 4];
+        let k = Kinematics { pos: &pos, vel: &zeros, ang_vel: &zeros };
+        let vs = virtual_sphere(&site, &k);
+        let loads = distribute_force(&site, &vs.center, &point, &force);
+        let mut f = Vec3::zeros();
+        let mut m = Vec3::zeros();
+        for l in &loads {
+            f += l.force;
+            m += (pos[l.node as usize] - origin).cross(&l.force) + l.torque;
+        }
+        let m_expected = (point - origin).cross(&force);
+        let scale = force.norm() * 10.0 + 1e-12;
+        prop_assert!((f - force).norm() <= 1e-12 * scale, "force {f} vs {force}");
+        prop_assert!((m - m_expected).norm() <= 1e-12 * scale, "moment {m} vs {m_expected}");
+    }
+
+    /// Eq 16 and the edge interpolation: for a rigid motion of the nodes the virtual sphere
+    /// moves with the rigid motion at its centre and spins at its rate.
+    #[test]
+    fn interpolation_reproduces_rigid_motion(
+        site in site(),
+        pos in prop::array::uniform4(v3()),
+        v in v3(),
+        omega in v3(),
+    ) {
+        let (vel, ang) = rigid_motion(&pos, &v, &omega);
+        let k = Kinematics { pos: &pos, vel: &vel, ang_vel: &ang };
+        let vs = virtual_sphere(&site, &k);
+        let expected = v + omega.cross(&vs.center);
+        let scale = v.norm() + omega.norm() * 4.0 + 1e-12;
+        prop_assert!((vs.velocity - expected).norm() <= 1e-12 * scale);
+        prop_assert!((vs.angular_velocity - omega).norm() <= 1e-11 * scale,
+            "{} vs {}", vs.angular_velocity, omega);
+    }
+
+    /// Two spheres in a common rigid motion have no relative velocity at the contact point.
+    #[test]
+    fn rigid_motion_has_no_relative_contact_velocity(
+        c1 in v3(), dir in v3(), v in v3(), omega in v3(),
+    ) {
+        prop_assume!(dir.norm() > 1e-3);
+        let c2 = c1 + dir.normalize() * 0.15;
+        let s1 = VirtualSphere { center: c1, velocity: v + omega.cross(&c1), angular_velocity: omega };
+        let s2 = VirtualSphere { center: c2, velocity: v + omega.cross(&c2), angular_velocity: omega };
+        let g = contact_geometry(&s1, 0.1, &s2, 0.1, &Vec3::z());
+        prop_assert!((g.overlap - 0.05).abs() < 1e-12);
+        prop_assert!(g.relative_velocity.norm() <= 1e-12 * (v.norm() + 4.0 * omega.norm() + 1.0));
+        prop_assert!((g.spin_about_normal - omega.dot(&g.normal)).abs() < 1e-12 * (1.0 + omega.norm()));
+    }
+}
+
+#[test]
+fn edge_spin_includes_one_over_length_squared() {
+    // A 2 m segment along x whose far end moves up at 1 m/s turns at 0.5 rad/s about -y...
+    let pos = [Vec3::zeros(), Vec3::new(2.0, 0.0, 0.0)];
+    let vel = [Vec3::zeros(), Vec3::new(0.0, 0.0, 1.0)];
+    let ang = [Vec3::zeros(); 2];
+    let site = Site::edge(0, [0, 1], 0.5, 0.1);
+    let vs = virtual_sphere(&site, &Kinematics { pos: &pos, vel: &vel, ang_vel: &ang });
+    // ... so the rate is s × dv / L² = (2,0,0) × (0,0,1) / 4 = (0,-0.5,0) (YADE: (0,-2,0)).
+    assert!((vs.angular_velocity - Vec3::new(0.0, -0.5, 0.0)).norm() < 1e-15);
+    assert!((vs.velocity - Vec3::new(0.0, 0.0, 0.5)).norm() < 1e-15);
+}
+
+#[test]
+fn coincident_centres_use_the_fallback_normal() {
+    let s = VirtualSphere {
+        center: Vec3::new(1.0, 2.0, 3.0),
+        velocity: Vec3::zeros(),
+        angular_velocity: Vec3::zeros(),
+    };
+    let g = contact_geometry(&s, 0.1, &s, 0.2, &Vec3::y());
+    assert_eq!(g.normal, Vec3::y());
+    assert!((g.overlap - 0.3).abs() < 1e-15);
+    assert!(g.point.iter().all(|x| x.is_finite()));
+}
+
+#[test]
+fn zero_length_edge_keeps_interpolated_spin() {
+    let pos = [Vec3::x(), Vec3::x()];
+    let vel = [Vec3::zeros(), Vec3::z()];
+    let ang = [Vec3::z(), Vec3::z()];
+    let vs = virtual_sphere(
+        &Site::edge(0, [0, 1], 0.3, 0.1),
+        &Kinematics { pos: &pos, vel: &vel, ang_vel: &ang },
+    );
+    assert_eq!(vs.angular_velocity, Vec3::z());
+}
