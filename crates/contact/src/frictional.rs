@@ -5,7 +5,7 @@
 //! normal force is a scalar (compression positive), and the stored shear force is the one acting
 //! **on body 2** (body 1 gets the opposite). The force on body 2 is F2 = Fn·n + Fs.
 
-use crate::energy::{cap_dissipation, spring_energy, Dissipation};
+use crate::energy::{slip_dissipation, spring_energy, Dissipation};
 use crate::material::Material;
 use crate::rotation::transport_tangent;
 use crate::stiffness::{contact_stiffness, friction_coefficient};
@@ -110,7 +110,7 @@ pub fn update_frictional_contact(
     let trial_mag = trial.norm();
     let (fs, sliding, friction) = if trial_mag > limit {
         let fs = if trial_mag > 0.0 { trial * (limit / trial_mag) } else { Vec3::zeros() };
-        (fs, true, cap_dissipation(trial_mag, limit, params.ks))
+        (fs, true, slip_dissipation(&rotated, &trial, &fs, params.ks))
     } else {
         (trial, false, 0.0)
     };

@@ -25,7 +25,7 @@ pub mod strength;
 #[cfg(test)]
 mod test_support;
 
-pub use energy::{cap_dissipation, spring_energy, Dissipation};
+pub use energy::{cap_dissipation, slip_dissipation, spring_energy, Dissipation};
 pub use frictional::{
     update_frictional_contact, ContactForces, ContactKinematics, FrictionalContact,
     FrictionalParams,
