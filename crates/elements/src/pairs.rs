@@ -87,23 +87,56 @@ impl Candidate {
     }
 }
 
-/// The site on connection `c` for a closest point at `location`.
+/// Relative distance (as a weight) under which a closest point is reported on the lower
+/// feature it is next to: a point within 1e-9 of a node (relative to the edge) is on the node,
+/// within 1e-9 of an edge (as the opposite barycentric weight) is on the edge. Neighbouring
+/// elements compute the same point with different round-off; snapping makes them report the
+/// same feature, so a touching exactly over a node or an edge is one contact.
+pub const SNAP: Real = 1e-9;
+
+/// The site on connection `c` for a closest point at `location` (snapped to a node within
+/// [`SNAP`]).
 fn connection_site(c: &ConnectionRef, location: SegmentLocation) -> Site {
     match location {
+        SegmentLocation::OnEdge { t } if t > SNAP && t < 1.0 - SNAP => {
+            Site::edge(c.id, c.nodes, t, c.radius)
+        }
+        SegmentLocation::OnEdge { t } => Site::particle(c.nodes[usize::from(t >= 0.5)], c.radius),
         SegmentLocation::OnVertex(k) => Site::particle(c.nodes[k], c.radius),
-        SegmentLocation::OnEdge { t } => Site::edge(c.id, c.nodes, t, c.radius),
     }
 }
 
-/// The site on PFacet `f` for a closest point at `location` with barycentric `weights`.
+/// The site on PFacet `f` for a closest point at `location` with barycentric `weights`
+/// (snapped to an edge or a node within [`SNAP`]).
 fn pfacet_site(f: &PFacetRef, location: TriangleLocation, weights: [Real; 3]) -> Site {
-    match location {
-        TriangleLocation::OnVertex(k) => Site::particle(f.nodes[k], f.radius),
-        TriangleLocation::OnEdge { edge, t } => {
-            let (i, j) = TriangleLocation::edge_vertices(edge);
+    let edge_site = |edge: usize, t: Real| {
+        let (i, j) = TriangleLocation::edge_vertices(edge);
+        if t <= SNAP {
+            Site::particle(f.nodes[i], f.radius)
+        } else if t >= 1.0 - SNAP {
+            Site::particle(f.nodes[j], f.radius)
+        } else {
             Site::edge(f.connections[edge], [f.nodes[i], f.nodes[j]], t, f.radius)
         }
-        TriangleLocation::OnFace => Site::face(f.id, f.nodes, weights, f.radius),
+    };
+    match location {
+        TriangleLocation::OnVertex(k) => Site::particle(f.nodes[k], f.radius),
+        TriangleLocation::OnEdge { edge, t } => edge_site(edge, t),
+        TriangleLocation::OnFace => {
+            let [wa, wb, wc] = weights;
+            // the smallest weight decides the edge it may lie on: wc ~ 0 is edge 0 (a → b),
+            // wa ~ 0 edge 1 (b → c), wb ~ 0 edge 2 (c → a)
+            let (min, edge, t) =
+                [(wc, 0, wb / (wa + wb)), (wa, 1, wc / (wb + wc)), (wb, 2, wa / (wc + wa))]
+                    .into_iter()
+                    .min_by(|x, y| x.0.total_cmp(&y.0))
+                    .unwrap_or((1.0, 0, 0.0));
+            if min <= SNAP {
+                edge_site(edge, t)
+            } else {
+                Site::face(f.id, f.nodes, weights, f.radius)
+            }
+        }
     }
 }
 

@@ -23,6 +23,13 @@
 //! one contact whatever it is over; in a concave valley it has one per face it touches (the
 //! faces do not contain each other's features).
 //!
+//! Neighbouring elements compute the same closest point with different round-off; the sites
+//! snap a point within a relative 1e-9 of a node or an edge onto it (`pairs::SNAP`), so a body
+//! exactly over a node or an edge is reported on the same feature by every element. What is
+//! left is a band of that width around the snapping limit where two elements may report two
+//! different edges of a node at once; a body has to move exactly along an edge and stop
+//! within 1e-9 of a node's snapping limit to land in it.
+//!
 //! The engine keys contacts by their features and, when a touching changes feature (a sphere
 //! sliding from one element to the next), hands the old contact's state to the new one, so
 //! the force has no jump and the shear history carries over.

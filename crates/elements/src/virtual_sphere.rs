@@ -233,21 +233,53 @@ pub struct NodeLoad {
 }
 
 /// Shares a force `force` acting at `point` on the virtual sphere of `site` (centre `center`)
-/// among the site's nodes (paper eq 17): node `k` receives `wₖ·F` and `wₖ·(c − P) × F`, the
-/// moment of `F` about the virtual sphere's centre shared with the same weights. The node
-/// forces sum to `F` and their moments about any point `O` sum to `(c − O) × F`, because
-/// `Σ wₖxₖ = P`. Unused slots (and walls) get zero loads.
-pub fn distribute_force(site: &Site, center: &Vec3, point: &Vec3, force: &Vec3) -> [NodeLoad; 3] {
+/// among the site's nodes (`pos` are the particles' positions), so that the node loads are
+/// the transpose of the interpolation of [`virtual_sphere`]: the power of the node loads
+/// equals the power of `F` at the contact point moving with the virtual sphere, and the
+/// contact neither creates nor destroys energy through the distribution.
+///
+/// With `τ = (c − P) × F` the moment of `F` about the virtual sphere's centre:
+/// - particle: the force and `τ` on the particle;
+/// - face (paper eq 17): node k receives `wₖ·F` and `wₖ·τ`;
+/// - edge at `t`, axis `s = x₁ − x₀`: node k receives `wₖ·F` and the axial part of the moment
+///   `wₖ·(τ·ŝ)ŝ`; the perpendicular part `τ⊥` goes to the nodes as the force couple
+///   `∓ τ⊥ × s / |s|²`, whose moment is `τ⊥` and whose power is `τ⊥·(s × Δv)/|s|²`, the
+///   rigid rotation of the axis that the edge's interpolated spin contains. (Sharing `τ⊥` as
+///   node torques, as model.md §3 words it, does not match that spin: edge contacts with
+///   friction then make or lose energy.)
+///
+/// In every case the node forces sum to `F` and their moments about any point `O` sum to
+/// `(c − O) × F`. Unused slots (and walls) get zero loads.
+pub fn distribute_force(
+    site: &Site,
+    pos: &[Vec3],
+    center: &Vec3,
+    point: &Vec3,
+    force: &Vec3,
+) -> [NodeLoad; 3] {
     let torque = (point - center).cross(force);
     let n = site.node_count();
-    std::array::from_fn(|slot| {
+    let mut loads: [NodeLoad; 3] = std::array::from_fn(|slot| {
         if slot < n {
             let w = site.weights[slot];
             NodeLoad { node: site.nodes[slot], force: force * w, torque: torque * w }
         } else {
             NodeLoad { node: site.nodes[slot], force: Vec3::zeros(), torque: Vec3::zeros() }
         }
-    })
+    });
+    if let Feature::Edge(_) = site.feature {
+        let s = pos[site.nodes[1] as usize] - pos[site.nodes[0] as usize];
+        let l2 = s.norm_squared();
+        if l2 > Real::MIN_POSITIVE {
+            let axial = s * (torque.dot(&s) / l2);
+            let couple = (torque - axial).cross(&s) / l2;
+            for (slot, sign) in [(0, -1.0), (1, 1.0)] {
+                loads[slot].torque = axial * site.weights[slot];
+                loads[slot].force += couple * sign;
+            }
+        }
+    }
+    loads
 }
 
 #[cfg(test)]

@@ -110,6 +110,25 @@ fn one_contact_at_a_node_shared_by_k_elements() {
     }
 }
 
+/// The same with the sphere off the node by round-off (1e-14): the elements compute the point
+/// with different round-off, and snapping makes them all report the node.
+#[test]
+fn one_contact_near_a_node_despite_round_off() {
+    for k in [4, 6, 7] {
+        let fan = Fan::new(k, 1.0, 0.01);
+        for off in [
+            Vec3::new(1e-14, 0.0, 0.0),
+            Vec3::new(-3e-15, 2e-14, 0.0),
+            Vec3::new(1e-13, 1e-13, 0.0),
+        ] {
+            let s =
+                SphereRef { id: SPHERE, center: Vec3::new(0.0, 0.0, 0.05) + off, radius: 0.045 };
+            let t = touchings(&fan.sphere_against_pfacets(&s), &fan.topology());
+            assert_eq!(t.len(), 1, "k = {k}, offset {off}: {t:?}");
+        }
+    }
+}
+
 /// A sphere sliding over a flat fan at constant height always has exactly one contact, with
 /// the same overlap, whatever element, edge or node it is over (validation.md case 10 at the
 /// geometry level).
@@ -207,7 +226,13 @@ fn sphere_on_cylinder_splits_force_one_minus_t_t() {
         // weight of the sphere, carried by the contact: force on the connection, downwards
         let f = Vec3::new(0.0, 0.0, -9.81);
         let point = cand.center2 + Vec3::z() * 0.01;
-        let loads = distribute_force(&cand.site2, &cand.center2, &point, &f);
+        let loads = distribute_force(
+            &cand.site2,
+            &[Vec3::zeros(), Vec3::new(2.0, 0.0, 0.0)],
+            &cand.center2,
+            &point,
+            &f,
+        );
         let on = |node: u32| {
             loads
                 .iter()
@@ -238,8 +263,13 @@ fn sphere_on_pfacet_splits_force_by_barycentric_weights() {
     let cand = sphere_pfacet(&s, &f);
     assert_eq!(cand.site2.feature, Feature::Face(0));
     let force = Vec3::new(0.0, 0.0, -1.0);
-    let loads =
-        distribute_force(&cand.site2, &cand.center2, &(cand.center2 + Vec3::z() * 0.01), &force);
+    let loads = distribute_force(
+        &cand.site2,
+        &[Vec3::zeros(); 13],
+        &cand.center2,
+        &(cand.center2 + Vec3::z() * 0.01),
+        &force,
+    );
     let expected = [0.8, 0.1, 0.1];
     for (l, (node, w)) in loads.iter().zip([10u32, 11, 12].iter().zip(expected)) {
         assert_eq!(l.node, *node);

@@ -1,4 +1,5 @@
 use super::*;
+use flexdem_geom::Real;
 use proptest::prelude::*;
 
 fn v3() -> impl Strategy<Value = Vec3> {
@@ -41,7 +42,7 @@ proptest! {
         let zeros = [Vec3::zeros(); 4];
         let k = Kinematics { pos: &pos, vel: &zeros, ang_vel: &zeros };
         let vs = virtual_sphere(&site, &k);
-        let loads = distribute_force(&site, &vs.center, &point, &force);
+        let loads = distribute_force(&site, &pos, &vs.center, &point, &force);
         let mut f = Vec3::zeros();
         let mut m = Vec3::zeros();
         for l in &loads {
@@ -52,6 +53,30 @@ proptest! {
         let scale = force.norm() * 10.0 + 1e-12;
         prop_assert!((f - force).norm() <= 1e-12 * scale, "force {f} vs {force}");
         prop_assert!((m - m_expected).norm() <= 1e-12 * scale, "moment {m} vs {m_expected}");
+    }
+
+    /// The distribution is the transpose of the interpolation: the power of the node loads
+    /// equals the power of F at the contact point carried by the virtual sphere.
+    #[test]
+    fn distribution_and_interpolation_deliver_the_same_power(
+        site in site(),
+        pos in prop::array::uniform4(v3()),
+        vel in prop::array::uniform4(v3()),
+        ang in prop::array::uniform4(v3()),
+        point in v3(),
+        force in v3(),
+    ) {
+        let k = Kinematics { pos: &pos, vel: &vel, ang_vel: &ang };
+        let vs = virtual_sphere(&site, &k);
+        prop_assume!(site.node_count() < 2 || (pos[site.nodes[1] as usize] - pos[site.nodes[0] as usize]).norm() > 1e-3);
+        let loads = distribute_force(&site, &pos, &vs.center, &point, &force);
+        let nodes: Real = loads[..site.node_count()]
+            .iter()
+            .map(|l| l.force.dot(&vel[l.node as usize]) + l.torque.dot(&ang[l.node as usize]))
+            .sum();
+        let at_point = force.dot(&(vs.velocity + vs.angular_velocity.cross(&(point - vs.center))));
+        let scale = force.norm() * (1.0 + vel.iter().chain(&ang).map(|v| v.norm()).sum::<Real>()) * 1e3;
+        prop_assert!((nodes - at_point).abs() <= 1e-12 * scale, "{nodes} vs {at_point}");
     }
 
     /// Eq 16 and the edge interpolation: for a rigid motion of the nodes the virtual sphere
