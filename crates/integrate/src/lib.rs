@@ -1,2 +1,24 @@
-//! The flexdem engine (to come): collision detection, contact bookkeeping, parallel force
-//! assembly, leapfrog integration with Cundall damping, and the critical time step.
+//! The flexdem engine: collision detection, contact bookkeeping, parallel force assembly,
+//! leapfrog integration with Cundall damping, and the critical time step (model.md §4–6).
+
+mod broad_phase;
+mod collider;
+mod contacts;
+mod error;
+mod integrator;
+mod links;
+mod settings;
+mod simulation;
+mod time_step;
+mod timers;
+
+pub use broad_phase::BroadPhase;
+pub use collider::Collider;
+pub use contacts::{Contact, Contacts};
+pub use error::SimulationError;
+pub use integrator::{kinetic_energy, leapfrog_step, StepWork};
+pub use links::{LinkEvents, Links};
+pub use settings::{Load, Ramp, Settings, TimeStep};
+pub use simulation::{Control, Energy, ForceHook, Simulation};
+pub use time_step::{critical_step_from_stiffness, p_wave_time_step, StiffnessSums};
+pub use timers::{Stage, Timers};

@@ -1,0 +1,217 @@
+//! Broad phase: the pairs of overlapping axis-aligned boxes, by a cell list.
+//!
+//! Each box is entered in the cells of a uniform grid it covers; boxes sharing a cell are
+//! tested, and a pair is reported only by the cell that holds the minimum corner of the two
+//! boxes' intersection, so it is reported once without a hash set. Cells are found by sorting
+//! (cell key, box) entries, so nothing is hashed and the output is deterministic. Boxes much
+//! larger than a cell (a big sphere among small elements) go to a short list tested against
+//! every box. The cost is O(N log N) for the sort plus O(N) for the tests at bounded density;
+//! the engine calls it only when its Verlet distance is used up, not every step.
+
+use flexdem_geom::{Aabb, Real, Vec3};
+use rayon::prelude::*;
+
+/// A box may cover at most this many cells per axis before it is treated as large.
+const MAX_CELLS_PER_AXIS: i64 = 4;
+
+/// Reusable buffers for [`overlapping_pairs`].
+#[derive(Clone, Debug, Default)]
+pub struct BroadPhase {
+    entries: Vec<(u64, u32)>,
+    large: Vec<u32>,
+    chunks: Vec<Vec<(u32, u32)>>,
+}
+
+/// Cell coordinates of a point for cells of size `h` anchored at `origin`.
+fn cell_of(p: &Vec3, origin: &Vec3, inv_h: Real) -> [i64; 3] {
+    std::array::from_fn(|k| ((p[k] - origin[k]) * inv_h).floor() as i64)
+}
+
+/// A 63-bit key of a cell (21 bits per axis). Far-apart cells may share a key: that only
+/// adds candidate tests, never a missed or a doubled pair.
+fn cell_key(c: [i64; 3]) -> u64 {
+    const MASK: u64 = (1 << 21) - 1;
+    ((c[0] as u64 & MASK) << 42) | ((c[1] as u64 & MASK) << 21) | (c[2] as u64 & MASK)
+}
+
+/// Cell size: twice the median of the boxes' largest extents, so that a typical box covers
+/// one or two cells per axis. Zero for no boxes.
+fn choose_cell_size(boxes: &[Aabb]) -> Real {
+    let mut extents: Vec<Real> =
+        boxes.iter().map(|b| (b.maxs - b.mins).max()).filter(|e| e.is_finite()).collect();
+    if extents.is_empty() {
+        return 0.0;
+    }
+    let mid = extents.len() / 2;
+    let (_, median, _) = extents.select_nth_unstable_by(mid, |a, b| a.total_cmp(b));
+    2.0 * median.max(Real::MIN_POSITIVE)
+}
+
+impl BroadPhase {
+    /// Writes into `pairs` every pair `(i, j)`, `i < j`, of boxes that intersect (closed
+    /// boxes) and that `accept(i, j)` accepts, sorted and each once. `accept` carries the
+    /// collision masks and the rule that adjacent elements never pair.
+    ///
+    /// Boxes with a NaN coordinate intersect nothing (the engine rejects NaN before).
+    pub fn overlapping_pairs<F>(&mut self, boxes: &[Aabb], accept: F, pairs: &mut Vec<(u32, u32)>)
+    where
+        F: Fn(u32, u32) -> bool + Sync,
+    {
+        pairs.clear();
+        self.entries.clear();
+        self.large.clear();
+        let h = choose_cell_size(boxes);
+        if h == 0.0 {
+            return;
+        }
+        let inv_h = 1.0 / h;
+        let origin = boxes.iter().fold(Vec3::repeat(Real::INFINITY), |m, b| m.inf(&b.mins));
+        for (i, b) in boxes.iter().enumerate() {
+            if !(b.mins.iter().chain(b.maxs.iter()).all(|x| x.is_finite())) {
+                continue;
+            }
+            let lo = cell_of(&b.mins, &origin, inv_h);
+            let hi = cell_of(&b.maxs, &origin, inv_h);
+            if (0..3).any(|k| hi[k] - lo[k] >= MAX_CELLS_PER_AXIS) {
+                self.large.push(i as u32);
+                continue;
+            }
+            for x in lo[0]..=hi[0] {
+                for y in lo[1]..=hi[1] {
+                    for z in lo[2]..=hi[2] {
+                        self.entries.push((cell_key([x, y, z]), i as u32));
+                    }
+                }
+            }
+        }
+        self.entries.par_sort_unstable();
+
+        // bucket boundaries, then pair tests per bucket in parallel, in bucket order
+        let entries = &self.entries;
+        let starts: Vec<usize> = (0..entries.len())
+            .filter(|&k| k == 0 || entries[k].0 != entries[k - 1].0)
+            .chain(std::iter::once(entries.len()))
+            .collect();
+        let chunk = (starts.len() / (4 * rayon::current_num_threads()).max(1)).max(64);
+        let bucket_ranges: Vec<(usize, usize)> = starts.windows(2).map(|w| (w[0], w[1])).collect();
+        self.chunks = bucket_ranges
+            .par_chunks(chunk)
+            .map(|ranges| {
+                let mut out = Vec::new();
+                for &(s, e) in ranges {
+                    let key = entries[s].0;
+                    for a in s..e {
+                        let i = entries[a].1;
+                        let bi = &boxes[i as usize];
+                        for &(_, j) in &entries[a + 1..e] {
+                            let bj = &boxes[j as usize];
+                            if !bi.intersects(bj) {
+                                continue;
+                            }
+                            // report only in the cell of the intersection's minimum corner
+                            let corner = bi.mins.sup(&bj.mins);
+                            if cell_key(cell_of(&corner, &origin, inv_h)) != key {
+                                continue;
+                            }
+                            let (p, q) = if i < j { (i, j) } else { (j, i) };
+                            if accept(p, q) {
+                                out.push((p, q));
+                            }
+                        }
+                    }
+                }
+                out
+            })
+            .collect();
+        for c in &self.chunks {
+            pairs.extend_from_slice(c);
+        }
+        // large boxes against every box (each large-large pair once)
+        for (n, &i) in self.large.iter().enumerate() {
+            let bi = &boxes[i as usize];
+            for (j, bj) in boxes.iter().enumerate() {
+                let j = j as u32;
+                if j == i || (self.large[..n].contains(&j)) || !bi.intersects(bj) {
+                    continue;
+                }
+                let (p, q) = if i < j { (i, j) } else { (j, i) };
+                if accept(p, q) {
+                    pairs.push((p, q));
+                }
+            }
+        }
+        pairs.par_sort_unstable();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn brute_force(boxes: &[Aabb], accept: impl Fn(u32, u32) -> bool) -> Vec<(u32, u32)> {
+        let mut out = Vec::new();
+        for i in 0..boxes.len() {
+            for j in i + 1..boxes.len() {
+                if boxes[i].intersects(&boxes[j]) && accept(i as u32, j as u32) {
+                    out.push((i as u32, j as u32));
+                }
+            }
+        }
+        out
+    }
+
+    fn boxes_strategy() -> impl Strategy<Value = Vec<Aabb>> {
+        prop::collection::vec(
+            (prop::array::uniform3(-5.0..5.0f64), prop::array::uniform3(0.0..1.0f64), 0u8..10),
+            0..120,
+        )
+        .prop_map(|v| {
+            v.into_iter()
+                .map(|(c, e, kind)| {
+                    // one box in ten is large (up to 8 units), a few are flat (zero extent)
+                    let s = if kind == 0 { 8.0 } else { 1.0 };
+                    let c = Vec3::from(c);
+                    let e = Vec3::from(e) * s * if kind == 1 { 0.0 } else { 1.0 };
+                    Aabb::new(c - e * 0.5, c + e * 0.5)
+                })
+                .collect()
+        })
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(200))]
+        #[test]
+        fn cell_list_matches_brute_force(boxes in boxes_strategy()) {
+            let accept = |i: u32, j: u32| (i + j) % 7 != 3;
+            let mut bp = BroadPhase::default();
+            let mut pairs = Vec::new();
+            bp.overlapping_pairs(&boxes, accept, &mut pairs);
+            prop_assert_eq!(pairs, brute_force(&boxes, accept));
+        }
+    }
+
+    #[test]
+    fn touching_boxes_pair_and_separated_ones_do_not() {
+        let boxes = [
+            Aabb::new(Vec3::zeros(), Vec3::repeat(1.0)),
+            Aabb::new(Vec3::new(1.0, 0.0, 0.0), Vec3::new(2.0, 1.0, 1.0)), // shares a face
+            Aabb::new(Vec3::new(2.5, 0.0, 0.0), Vec3::new(3.0, 1.0, 1.0)),
+        ];
+        let mut pairs = Vec::new();
+        BroadPhase::default().overlapping_pairs(&boxes, |_, _| true, &mut pairs);
+        assert_eq!(pairs, vec![(0, 1)]);
+    }
+
+    #[test]
+    fn no_boxes_and_nan_boxes_give_no_pairs() {
+        let mut pairs = vec![(9, 9)];
+        let mut bp = BroadPhase::default();
+        bp.overlapping_pairs(&[], |_, _| true, &mut pairs);
+        assert!(pairs.is_empty());
+        let nan = Aabb::new(Vec3::repeat(f64::NAN), Vec3::repeat(1.0));
+        let ok = Aabb::new(Vec3::zeros(), Vec3::repeat(1.0));
+        bp.overlapping_pairs(&[nan, ok, ok], |_, _| true, &mut pairs);
+        assert_eq!(pairs, vec![(1, 2)]);
+    }
+}

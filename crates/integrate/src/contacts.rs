@@ -1,0 +1,458 @@
+//! Contact bookkeeping and forces: each step, the exact closest features of every candidate
+//! pair, the one-contact-per-touching rule (`flexdem_elements::touching`), persistent contacts
+//! keyed by their two features with their shear history, handed over to the neighbouring
+//! feature when a touching slides across elements, the contact law in parallel, and the
+//! node loads summed in contact order (independent of the thread count).
+
+use crate::collider::{Collider, NONE};
+use flexdem_contact::{
+    update_frictional_contact, ContactForces, ContactKinematics, FrictionalContact,
+    FrictionalParams,
+};
+use flexdem_elements::pairs::{self, Candidate, ConnectionRef, PFacetRef, SphereRef};
+use flexdem_elements::touching::{dominates, Element, ElementCandidate, Topology};
+use flexdem_elements::virtual_sphere::{
+    contact_geometry, distribute_force, virtual_sphere, ContactGeometry, Feature, Kinematics,
+    NodeLoad, Site, VirtualSphere,
+};
+use flexdem_elements::{Adjacency, Model};
+use flexdem_geom::{Real, Vec3};
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+
+/// One contact: where it sits on each body, its constants and its state.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Contact {
+    /// Site on body 1 (a wall, or the element with the lower collidable index).
+    pub site1: Site,
+    /// Site on body 2.
+    pub site2: Site,
+    /// Owners of the two sites (a free sphere, a structure or a wall), for handovers.
+    pub owners: (u64, u64),
+    /// Stiffnesses and friction.
+    pub params: FrictionalParams,
+    /// Shear force, last normal, dissipation.
+    pub state: FrictionalContact,
+    /// Forces of the last update.
+    #[serde(skip)]
+    pub forces: ContactForces,
+    /// Contact point at the last update.
+    pub point: Vec3,
+}
+
+impl Contact {
+    /// The key contacts are sorted and matched by: the two features.
+    pub fn key(&self) -> (Feature, Feature) {
+        (self.site1.feature, self.site2.feature)
+    }
+}
+
+/// A touching found this step, before it is matched with the contacts of the last step.
+#[derive(Clone, Copy, Debug)]
+struct Touching {
+    candidate: Candidate,
+    materials: (u32, u32),
+    owners: (u64, u64),
+}
+
+/// All contacts and the buffers of their pipeline.
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
+pub struct Contacts {
+    /// Current contacts, sorted by key.
+    pub list: Vec<Contact>,
+    /// Friction dissipated by contacts that have ended (J).
+    pub ended_dissipation: Real,
+    /// Indices in `list` of the contacts made at the last detection (new keys).
+    #[serde(skip)]
+    pub fresh: Vec<usize>,
+    #[serde(skip)]
+    candidates: Vec<Option<ElementCandidate>>,
+    #[serde(skip)]
+    touching: Vec<ElementCandidate>,
+    #[serde(skip)]
+    loads: Vec<[NodeLoad; 6]>,
+    #[serde(skip)]
+    connection_nodes: Vec<[u32; 2]>,
+    #[serde(skip)]
+    pfacet_nodes: Vec<[u32; 3]>,
+    #[serde(skip)]
+    pfacet_connections: Vec<[u32; 3]>,
+}
+
+const SPHERE_OWNER: u64 = 0;
+const STRUCTURE_OWNER: u64 = 1 << 32;
+const WALL_OWNER: u64 = 2 << 32;
+
+fn owner(model: &Model, e: Element) -> u64 {
+    match e {
+        Element::Particle(i) => SPHERE_OWNER | u64::from(i),
+        Element::Connection(k) => {
+            STRUCTURE_OWNER | u64::from(model.connections[k as usize].structure)
+        }
+        Element::PFacet(k) => STRUCTURE_OWNER | u64::from(model.pfacets[k as usize].structure),
+    }
+}
+
+fn material(model: &Model, e: Element) -> u32 {
+    match e {
+        Element::Particle(i) => model.particles.material[i as usize],
+        Element::Connection(k) => model.connections[k as usize].material,
+        Element::PFacet(k) => model.pfacets[k as usize].material,
+    }
+}
+
+/// The closest features of two collidable elements (`a` before `b` in collidable order:
+/// spheres, then connections, then PFacets).
+fn candidate(model: &Model, a: Element, b: Element) -> Candidate {
+    let p = &model.particles;
+    let sphere =
+        |i: u32| SphereRef { id: i, center: p.pos[i as usize], radius: p.radius[i as usize] };
+    let conn = |k: u32| {
+        let c = &model.connections[k as usize];
+        ConnectionRef {
+            id: k,
+            nodes: c.nodes,
+            ends: c.nodes.map(|n| p.pos[n as usize]),
+            radius: c.radius,
+        }
+    };
+    let pf = |k: u32| {
+        let f = &model.pfacets[k as usize];
+        PFacetRef {
+            id: k,
+            nodes: f.nodes,
+            connections: f.connections,
+            corners: f.nodes.map(|n| p.pos[n as usize]),
+            radius: f.radius,
+        }
+    };
+    match (a, b) {
+        (Element::Particle(i), Element::Particle(j)) => {
+            pairs::sphere_sphere(&sphere(i), &sphere(j))
+        }
+        (Element::Particle(i), Element::Connection(k)) => {
+            pairs::sphere_connection(&sphere(i), &conn(k))
+        }
+        (Element::Particle(i), Element::PFacet(k)) => pairs::sphere_pfacet(&sphere(i), &pf(k)),
+        (Element::Connection(i), Element::Connection(k)) => {
+            pairs::connection_connection(&conn(i), &conn(k))
+        }
+        (Element::Connection(i), Element::PFacet(k)) => pairs::connection_pfacet(&conn(i), &pf(k)),
+        (Element::PFacet(i), Element::PFacet(k)) => pairs::pfacet_pfacet(&pf(i), &pf(k)),
+        // collidable order puts spheres before connections before PFacets
+        (x, y) => {
+            let c = candidate(model, y, x);
+            Candidate {
+                site1: c.site2,
+                site2: c.site1,
+                center1: c.center2,
+                center2: c.center1,
+                distance: c.distance,
+            }
+        }
+    }
+}
+
+/// Collidable indices of the elements that contain `feature`.
+fn containing(collider: &Collider, adj: &Adjacency, feature: Feature, out: &mut Vec<u32>) {
+    out.clear();
+    match feature {
+        Feature::Particle(i) => {
+            let s = collider.sphere_element[i as usize];
+            if s != NONE {
+                out.push(s);
+            } else {
+                out.extend(
+                    adj.node_connections
+                        .get(i as usize)
+                        .iter()
+                        .map(|&c| collider.connection_element[c as usize])
+                        .filter(|&e| e != NONE),
+                );
+                out.extend(
+                    adj.node_pfacets
+                        .get(i as usize)
+                        .iter()
+                        .map(|&f| collider.pfacet_element[f as usize]),
+                );
+            }
+        }
+        Feature::Edge(c) => {
+            let e = collider.connection_element[c as usize];
+            if e != NONE {
+                out.push(e);
+            }
+            out.extend(
+                adj.connection_pfacets
+                    .get(c as usize)
+                    .iter()
+                    .map(|&f| collider.pfacet_element[f as usize]),
+            );
+        }
+        Feature::Face(f) => out.push(collider.pfacet_element[f as usize]),
+        Feature::Wall(_) => {}
+    }
+}
+
+impl Contacts {
+    /// Empty contacts for `model`.
+    pub fn new(model: &Model) -> Self {
+        Contacts {
+            connection_nodes: model.connections.iter().map(|c| c.nodes).collect(),
+            pfacet_nodes: model.pfacets.iter().map(|f| f.nodes).collect(),
+            pfacet_connections: model.pfacets.iter().map(|f| f.connections).collect(),
+            ..Default::default()
+        }
+    }
+
+    /// Finds this step's touchings among the collider's candidate pairs, applies the
+    /// one-contact-per-touching rule, and matches them with the last step's contacts (keeping
+    /// their state, or handing it over to the feature a touching moved to).
+    pub fn detect(&mut self, model: &Model, adj: &Adjacency, collider: &Collider) {
+        let p = &model.particles;
+        // 1. exact closest features of every candidate pair; keep the touching ones
+        let elements = &collider.elements;
+        self.candidates.clear();
+        collider
+            .pairs
+            .par_iter()
+            .map(|&(i, j)| {
+                let (a, b) = (elements[i as usize], elements[j as usize]);
+                let c = candidate(model, a, b);
+                (c.overlap() > 0.0).then_some(ElementCandidate {
+                    element1: a,
+                    element2: b,
+                    candidate: c,
+                })
+            })
+            .collect_into_vec(&mut self.candidates);
+        self.touching.clear();
+        self.touching.extend(self.candidates.iter().flatten());
+
+        // 2. one contact per touching: drop the dominated candidates (indexed lookups)
+        let topology = Topology {
+            connection_nodes: &self.connection_nodes,
+            pfacet_nodes: &self.pfacet_nodes,
+            pfacet_connections: &self.pfacet_connections,
+        };
+        let touching = &self.touching;
+        let index_of = |e: Element| -> u32 {
+            match e {
+                Element::Particle(i) => collider.sphere_element[i as usize],
+                Element::Connection(k) => collider.connection_element[k as usize],
+                Element::PFacet(k) => collider.pfacet_element[k as usize],
+            }
+        };
+        let keys: Vec<(u32, u32)> =
+            touching.iter().map(|c| (index_of(c.element1), index_of(c.element2))).collect();
+        let survivors: Vec<Touching> = (0..touching.len())
+            .into_par_iter()
+            .map_init(
+                || (Vec::new(), Vec::new()),
+                |(side1, side2), i| {
+                    let ci = &touching[i];
+                    containing(collider, adj, ci.candidate.site1.feature, side1);
+                    containing(collider, adj, ci.candidate.site2.feature, side2);
+                    for &e1 in side1.iter() {
+                        for &e2 in side2.iter() {
+                            let key = (e1.min(e2), e1.max(e2));
+                            if let Ok(j) = keys.binary_search(&key) {
+                                if dominates(&touching[j], j, ci, i, &topology) {
+                                    return None;
+                                }
+                            }
+                        }
+                    }
+                    Some(Touching {
+                        candidate: ci.candidate,
+                        materials: (material(model, ci.element1), material(model, ci.element2)),
+                        owners: (owner(model, ci.element1), owner(model, ci.element2)),
+                    })
+                },
+            )
+            .flatten()
+            .collect();
+
+        // walls touch every particle on their side (one contact per wall and particle)
+        let mut all = survivors;
+        for &(w, i) in &collider.wall_pairs {
+            let wall = &model.walls[w as usize];
+            let x = p.pos[i as usize];
+            let r = p.radius[i as usize];
+            let gap = (x - wall.point).dot(&wall.normal);
+            if r - gap > 0.0 {
+                let on_plane = x - wall.normal * gap;
+                all.push(Touching {
+                    candidate: Candidate {
+                        site1: Site::wall(w),
+                        site2: Site::particle(i, r),
+                        center1: on_plane,
+                        center2: x,
+                        distance: gap,
+                    },
+                    materials: (wall.material, p.material[i as usize]),
+                    owners: (WALL_OWNER | u64::from(w), owner(model, Element::Particle(i))),
+                });
+            }
+        }
+        all.par_sort_unstable_by_key(|t| (t.candidate.site1.feature, t.candidate.site2.feature));
+
+        // 3. match with the last step's contacts (both sorted by key)
+        let old = std::mem::take(&mut self.list);
+        let mut taken = vec![false; old.len()];
+        let mut fresh = std::mem::take(&mut self.fresh);
+        fresh.clear();
+        let mut k = 0;
+        for (n, t) in all.iter().enumerate() {
+            let key = (t.candidate.site1.feature, t.candidate.site2.feature);
+            while k < old.len() && old[k].key() < key {
+                k += 1;
+            }
+            let c = if k < old.len() && old[k].key() == key {
+                taken[k] = true;
+                let mut c = old[k].clone();
+                c.site1 = t.candidate.site1;
+                c.site2 = t.candidate.site2;
+                c
+            } else {
+                fresh.push(n);
+                new_contact(model, t)
+            };
+            self.list.push(c);
+        }
+        // handover: a new contact takes the state of an ended one of the same owners, the
+        // nearest within the contact's size (a touching that moved to the next feature)
+        for &n in &fresh {
+            let c = &self.list[n];
+            let reach = c.site1.radius + c.site2.radius;
+            let point = all[n].candidate.center1;
+            let best = old
+                .iter()
+                .enumerate()
+                .filter(|(o, oc)| !taken[*o] && oc.owners == c.owners)
+                .map(|(o, oc)| (o, (oc.point - point).norm()))
+                .filter(|&(_, d)| d <= reach)
+                .min_by(|a, b| a.1.total_cmp(&b.1));
+            if let Some((o, _)) = best {
+                taken[o] = true;
+                let state = old[o].state.clone();
+                self.list[n].state = state;
+            }
+        }
+        for (o, c) in old.iter().enumerate() {
+            if !taken[o] {
+                self.ended_dissipation += c.state.dissipated.total();
+            }
+        }
+        self.fresh = fresh;
+    }
+
+    /// Updates every contact's forces (in parallel) and adds the node loads to `force` and
+    /// `torque` in contact order.
+    pub fn apply(&mut self, model: &Model, dt: Real, force: &mut [Vec3], torque: &mut [Vec3]) {
+        let p = &model.particles;
+        let k = Kinematics { pos: &p.pos, vel: &p.vel, ang_vel: &p.ang_vel };
+        self.loads.resize(
+            self.list.len(),
+            [NodeLoad { node: 0, force: Vec3::zeros(), torque: Vec3::zeros() }; 6],
+        );
+        self.list.par_iter_mut().zip(self.loads.par_iter_mut()).for_each(|(c, loads)| {
+            let (vs1, vs2, g) = geometry(model, &k, c);
+            let f = update_frictional_contact(
+                &c.params,
+                &mut c.state,
+                &ContactKinematics {
+                    normal: g.normal,
+                    overlap: g.overlap,
+                    relative_velocity: g.relative_velocity,
+                    spin_about_normal: g.spin_about_normal,
+                },
+                dt,
+            );
+            let l1 = distribute_force(&c.site1, &p.pos, &vs1.center, &g.point, &(-f.force_on_2));
+            let l2 = distribute_force(&c.site2, &p.pos, &vs2.center, &g.point, &f.force_on_2);
+            loads[..3].copy_from_slice(&l1);
+            loads[3..].copy_from_slice(&l2);
+            c.forces = f;
+            c.point = g.point;
+        });
+        for (c, loads) in self.list.iter().zip(&self.loads) {
+            let n1 = c.site1.node_count();
+            let n2 = c.site2.node_count();
+            for l in loads[..n1].iter().chain(&loads[3..3 + n2]) {
+                force[l.node as usize] += l.force;
+                torque[l.node as usize] += l.torque;
+            }
+        }
+    }
+
+    /// Elastic energy stored in the contacts at the last update.
+    pub fn elastic_energy(&self) -> Real {
+        self.list.iter().map(|c| c.forces.elastic_energy).sum()
+    }
+
+    /// Energy dissipated by contact friction since the start.
+    pub fn dissipated(&self) -> Real {
+        self.ended_dissipation + self.list.iter().map(|c| c.state.dissipated.total()).sum::<Real>()
+    }
+}
+
+fn new_contact(model: &Model, t: &Touching) -> Contact {
+    let m1 = &model.materials[t.materials.0 as usize];
+    let m2 = &model.materials[t.materials.1 as usize];
+    let c = &t.candidate;
+    let (r1, r2) = match c.site1.feature {
+        // a wall has the particle's radius in eq 3 and 4 (YADE)
+        Feature::Wall(_) => (c.site2.radius, c.site2.radius),
+        _ => (c.site1.radius, c.site2.radius),
+    };
+    let d = c.center2 - c.center1;
+    let normal = if d.norm() > 0.0 { d.normalize() } else { Vec3::z() };
+    Contact {
+        site1: c.site1,
+        site2: c.site2,
+        owners: t.owners,
+        params: FrictionalParams::from_materials(m1, r1, m2, r2),
+        state: FrictionalContact::new(normal),
+        forces: ContactForces::default(),
+        point: c.center1 + normal * c.site1.radius,
+    }
+}
+
+/// Virtual spheres and contact geometry of a contact from the current state.
+fn geometry(
+    model: &Model,
+    k: &Kinematics<'_>,
+    c: &Contact,
+) -> (VirtualSphere, VirtualSphere, ContactGeometry) {
+    let vs2 = virtual_sphere(&c.site2, k);
+    match c.site1.feature {
+        Feature::Wall(w) => {
+            let wall = &model.walls[w as usize];
+            let gap = (vs2.center - wall.point).dot(&wall.normal);
+            let on_plane = vs2.center - wall.normal * gap;
+            let vs1 = VirtualSphere {
+                center: on_plane,
+                velocity: wall.velocity,
+                angular_velocity: Vec3::zeros(),
+            };
+            let r = c.site2.radius;
+            let overlap = r - gap;
+            let point = on_plane - wall.normal * (0.5 * overlap);
+            let v2 = vs2.velocity + vs2.angular_velocity.cross(&(point - vs2.center));
+            let g = ContactGeometry {
+                normal: wall.normal,
+                overlap,
+                point,
+                relative_velocity: v2 - wall.velocity,
+                spin_about_normal: 0.5 * wall.normal.dot(&vs2.angular_velocity),
+            };
+            (vs1, vs2, g)
+        }
+        _ => {
+            let vs1 = virtual_sphere(&c.site1, k);
+            let g = contact_geometry(&vs1, c.site1.radius, &vs2, c.site2.radius, &c.state.normal);
+            (vs1, vs2, g)
+        }
+    }
+}

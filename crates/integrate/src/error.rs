@@ -1,0 +1,80 @@
+//! Errors of the engine: bad settings, bad models, and runs that go wrong.
+
+use flexdem_elements::ModelError;
+use flexdem_geom::Real;
+use thiserror::Error;
+
+/// What can stop a simulation from starting or going on.
+#[derive(Debug, Error)]
+pub enum SimulationError {
+    /// A setting has a value outside its range.
+    #[error("setting `{what}` is {value}: expected {expected}")]
+    Setting {
+        /// The setting.
+        what: String,
+        /// Its value.
+        value: String,
+        /// What it should be.
+        expected: String,
+    },
+    /// The model is inconsistent (an id out of range, NaN, a zero-length connection, ...).
+    #[error(transparent)]
+    Model(#[from] ModelError),
+    /// A particle that can move has no mass or no inertia.
+    #[error(
+        "particle {particle} is free to move but has mass {mass} and inertia {inertia}: \
+         give it connections (a node), a density (a sphere), or block its DOFs"
+    )]
+    NoMass {
+        /// The particle.
+        particle: u32,
+        /// Its mass.
+        mass: Real,
+        /// Its inertia.
+        inertia: Real,
+    },
+    /// Nothing gives a time step: no stiffness and no massive particle.
+    #[error("no time step can be estimated (no links, contacts or massive particles): set dt")]
+    NoTimeStep,
+    /// A particle moved by more than its radius in one step: the run is unstable.
+    #[error(
+        "particle {particle} moved by {displacement:.3e} m in one step at step {step} \
+         (t = {time:.6e} s), more than its radius {radius:.3e} m: the run is unstable \
+         (dt = {dt:.3e} s, critical step {critical_dt:.3e} s); use a smaller dt or dt = auto \
+         with a smaller safety factor"
+    )]
+    Exploding {
+        /// The fastest such particle.
+        particle: u32,
+        /// Its displacement in the step.
+        displacement: Real,
+        /// Its radius.
+        radius: Real,
+        /// The step.
+        step: u64,
+        /// The time.
+        time: Real,
+        /// The time step in use.
+        dt: Real,
+        /// The last critical step estimate.
+        critical_dt: Real,
+    },
+    /// A position or velocity became NaN or infinite.
+    #[error(
+        "particle {particle} has a non-finite position or velocity at step {step} \
+         (t = {time:.6e} s) with dt = {dt:.3e} s (critical step {critical_dt:.3e} s): \
+         the run is unstable; use a smaller dt or dt = auto with a smaller safety factor"
+    )]
+    NonFinite {
+        /// The first such particle.
+        particle: u32,
+        /// The step.
+        step: u64,
+        /// The time.
+        time: Real,
+        /// The time step in use.
+        dt: Real,
+        /// The last critical step estimate.
+        critical_dt: Real,
+    },
+}

@@ -1,0 +1,182 @@
+//! The beam links of the model: one per connection, made when the scene is built
+//! (model.md §3), updated in parallel each step, their node loads summed per node in a fixed
+//! order so that the result does not depend on the number of threads.
+
+use flexdem_contact::{
+    update_link, LinkEvent, LinkForces, LinkKinematics, LinkKinematicsMode, LinkParams, LinkState,
+    LinkStatus,
+};
+use flexdem_elements::{Model, Particles};
+use flexdem_geom::{Real, Vec3};
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+
+/// Links per parallel chunk.
+const CHUNK: usize = 512;
+
+/// Every beam link: constants, state, and the forces of the last step.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct Links {
+    /// The two nodes of link `i` (those of connection `i`).
+    pub nodes: Vec<[u32; 2]>,
+    /// Constants (stiffness, rest length, limits).
+    pub params: Vec<LinkParams>,
+    /// State carried from step to step (shear force, reference orientations, status).
+    pub state: Vec<LinkState>,
+    /// Forces and torques of the last update.
+    #[serde(skip)]
+    pub forces: Vec<LinkForces>,
+    /// For each node, the offsets into `node_loads` (CSR).
+    node_offsets: Vec<u32>,
+    /// For each node, the loads it receives: `2·link + side`.
+    node_loads: Vec<u32>,
+}
+
+/// Events of one links update.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct LinkEvents {
+    /// Links broken for good in this step.
+    pub broken: u32,
+    /// Links that lost their cohesion in this step.
+    pub decohered: u32,
+}
+
+impl Links {
+    /// One link per connection of `model`, at rest in the current configuration, with the
+    /// material of the connection and the given shear kinematics.
+    pub fn from_model(model: &Model, mode: LinkKinematicsMode) -> Self {
+        let p = &model.particles;
+        let mut links = Links {
+            nodes: Vec::with_capacity(model.connections.len()),
+            params: Vec::with_capacity(model.connections.len()),
+            state: Vec::with_capacity(model.connections.len()),
+            forces: Vec::new(),
+            node_offsets: Vec::new(),
+            node_loads: Vec::new(),
+        };
+        for c in &model.connections {
+            let [a, b] = c.nodes.map(|n| n as usize);
+            let material = &model.materials[c.material as usize];
+            links.nodes.push(c.nodes);
+            links.params.push(LinkParams::from_material(material, c.radius, c.rest_length, mode));
+            links.state.push(LinkState::new(p.pos[a], p.pos[b], p.ori[a], p.ori[b]));
+        }
+        links.forces = vec![LinkForces::default(); links.nodes.len()];
+        links.index_nodes(p.len());
+        links
+    }
+
+    /// Builds the node → loads index (counting sort, loads of a node in link order).
+    fn index_nodes(&mut self, n_particles: usize) {
+        let mut count = vec![0u32; n_particles + 1];
+        for l in &self.nodes {
+            count[l[0] as usize + 1] += 1;
+            count[l[1] as usize + 1] += 1;
+        }
+        for i in 0..n_particles {
+            count[i + 1] += count[i];
+        }
+        let mut next = count.clone();
+        self.node_loads = vec![0; 2 * self.nodes.len()];
+        for (k, l) in self.nodes.iter().enumerate() {
+            for side in 0..2 {
+                let n = l[side] as usize;
+                self.node_loads[next[n] as usize] = (2 * k + side) as u32;
+                next[n] += 1;
+            }
+        }
+        self.node_offsets = count;
+    }
+
+    /// Number of links.
+    pub fn len(&self) -> usize {
+        self.nodes.len()
+    }
+
+    /// Whether there is no link.
+    pub fn is_empty(&self) -> bool {
+        self.nodes.is_empty()
+    }
+
+    /// Number of links still holding (not broken).
+    pub fn intact(&self) -> usize {
+        self.state.iter().filter(|s| s.status != LinkStatus::Broken).count()
+    }
+
+    /// Updates every link from the particles' state (in parallel) and returns the step's
+    /// breakage events.
+    pub fn update(&mut self, p: &Particles, dt: Real) -> LinkEvents {
+        if self.forces.len() != self.nodes.len() {
+            self.forces = vec![LinkForces::default(); self.nodes.len()];
+        }
+        let events: Vec<LinkEvents> = (
+            self.nodes.par_chunks(CHUNK),
+            self.params.par_chunks(CHUNK),
+            self.state.par_chunks_mut(CHUNK),
+            self.forces.par_chunks_mut(CHUNK),
+        )
+            .into_par_iter()
+            .map(|(nodes, params, state, forces)| {
+                let mut ev = LinkEvents::default();
+                for k in 0..nodes.len() {
+                    let [a, b] = nodes[k].map(|n| n as usize);
+                    let kin = LinkKinematics {
+                        x1: p.pos[a],
+                        x2: p.pos[b],
+                        v1: p.vel[a],
+                        v2: p.vel[b],
+                        w1: p.ang_vel[a],
+                        w2: p.ang_vel[b],
+                        q1: p.ori[a],
+                        q2: p.ori[b],
+                    };
+                    let f = update_link(&params[k], &mut state[k], &kin, dt);
+                    match f.event {
+                        LinkEvent::BrokeInTension | LinkEvent::Separated => ev.broken += 1,
+                        LinkEvent::LostCohesion => ev.decohered += 1,
+                        LinkEvent::None => {}
+                    }
+                    forces[k] = f;
+                }
+                ev
+            })
+            .collect();
+        events.iter().fold(LinkEvents::default(), |a, e| LinkEvents {
+            broken: a.broken + e.broken,
+            decohered: a.decohered + e.decohered,
+        })
+    }
+
+    /// Adds the last update's loads to the per-particle `force` and `torque` sums, node by
+    /// node in link order (parallel over nodes, independent of the thread count).
+    pub fn add_loads(&self, force: &mut [Vec3], torque: &mut [Vec3]) {
+        let n = self.node_offsets.len().saturating_sub(1).min(force.len());
+        (&mut force[..n], &mut torque[..n])
+            .into_par_iter()
+            .enumerate()
+            .with_min_len(CHUNK)
+            .for_each(|(i, (f, t))| {
+                let (s, e) = (self.node_offsets[i] as usize, self.node_offsets[i + 1] as usize);
+                for &code in &self.node_loads[s..e] {
+                    let lf = &self.forces[(code / 2) as usize];
+                    if code % 2 == 0 {
+                        *f += lf.force_on_1;
+                        *t += lf.torque_on_1;
+                    } else {
+                        *f += lf.force_on_2;
+                        *t += lf.torque_on_2;
+                    }
+                }
+            });
+    }
+
+    /// Elastic energy stored in the links at the last update.
+    pub fn elastic_energy(&self) -> Real {
+        self.forces.iter().map(|f| f.elastic_energy).sum()
+    }
+
+    /// Energy dissipated by the links since they were made (plastic caps, slip, breakage).
+    pub fn dissipated(&self) -> Real {
+        self.state.iter().map(|s| s.dissipated.total()).sum()
+    }
+}

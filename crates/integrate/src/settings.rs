@@ -1,0 +1,130 @@
+//! Simulation settings and imposed loads.
+
+use crate::SimulationError;
+use flexdem_contact::LinkKinematicsMode;
+use flexdem_geom::{Real, Vec3};
+use serde::{Deserialize, Serialize};
+
+/// How the time step is chosen (model.md §4).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub enum TimeStep {
+    /// `safety × critical step`, recomputed as links and contacts change.
+    Auto {
+        /// Safety factor in (0, 1].
+        safety: Real,
+    },
+    /// A fixed step (s); a warning is raised when it exceeds the critical step.
+    Fixed(Real),
+}
+
+impl Default for TimeStep {
+    fn default() -> Self {
+        TimeStep::Auto { safety: 0.5 }
+    }
+}
+
+/// Settings of a simulation.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Settings {
+    /// Time step choice.
+    pub time_step: TimeStep,
+    /// Gravity (m/s²).
+    pub gravity: Vec3,
+    /// Cundall damping λ in [0, 1).
+    pub damping: Real,
+    /// Shear kinematics of beam links.
+    pub link_mode: LinkKinematicsMode,
+    /// Verlet distance of the broad phase, as a fraction of the smallest radius.
+    pub verlet_factor: Real,
+    /// Recompute the automatic time step every this many steps (and when contacts appear).
+    pub time_step_interval: u64,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Settings {
+            time_step: TimeStep::default(),
+            gravity: Vec3::zeros(),
+            damping: 0.0,
+            link_mode: LinkKinematicsMode::Beam,
+            verlet_factor: 0.5,
+            time_step_interval: 100,
+        }
+    }
+}
+
+impl Settings {
+    /// Checks every value, naming the bad one.
+    pub fn validate(&self) -> Result<(), SimulationError> {
+        let bad = |what: &str, value: String, expected: &str| {
+            Err(SimulationError::Setting { what: what.into(), value, expected: expected.into() })
+        };
+        match self.time_step {
+            TimeStep::Auto { safety } if !(safety > 0.0 && safety <= 1.0) => {
+                return bad("time step safety factor", safety.to_string(), "a number in (0, 1]");
+            }
+            TimeStep::Fixed(dt) if !(dt > 0.0 && dt.is_finite()) => {
+                return bad("time step", dt.to_string(), "a positive finite number of seconds");
+            }
+            _ => {}
+        }
+        if !self.gravity.iter().all(|g| g.is_finite()) {
+            return bad("gravity", format!("{:?}", self.gravity), "three finite numbers (m/s²)");
+        }
+        if !(0.0..1.0).contains(&self.damping) {
+            return bad("damping", self.damping.to_string(), "a number in [0, 1)");
+        }
+        if !(self.verlet_factor > 0.0 && self.verlet_factor.is_finite()) {
+            return bad("verlet factor", self.verlet_factor.to_string(), "a positive number");
+        }
+        if self.time_step_interval == 0 {
+            return bad("time step interval", "0".into(), "at least 1 step");
+        }
+        Ok(())
+    }
+}
+
+/// How an imposed load grows in time.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub enum Ramp {
+    /// Full value from the start.
+    Constant,
+    /// From 0 at `start` to the full value at `start + duration`, then constant.
+    Linear {
+        /// Time the ramp starts (s).
+        start: Real,
+        /// Duration of the ramp (s).
+        duration: Real,
+    },
+}
+
+impl Ramp {
+    /// The fraction of the load applied at time `t`.
+    pub fn factor(&self, t: Real) -> Real {
+        match *self {
+            Ramp::Constant => 1.0,
+            Ramp::Linear { start, duration } => {
+                if t <= start {
+                    0.0
+                } else if duration <= 0.0 || t >= start + duration {
+                    1.0
+                } else {
+                    (t - start) / duration
+                }
+            }
+        }
+    }
+}
+
+/// A force and a torque imposed on each of a set of particles.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Load {
+    /// The particles loaded.
+    pub particles: Vec<u32>,
+    /// Force on each (N).
+    pub force: Vec3,
+    /// Torque on each (N·m).
+    pub torque: Vec3,
+    /// Growth in time.
+    pub ramp: Ramp,
+}
