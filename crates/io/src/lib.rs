@@ -1,4 +1,6 @@
 //! Input and output for flexdem: scene files, mesh import, VTK output for ParaView, CSV series
-//! and checkpoints (mesh import so far).
+//! and checkpoints (checkpoints to come).
 
 pub mod mesh;
+pub mod output;
+pub mod scene;

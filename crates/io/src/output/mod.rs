@@ -1,0 +1,303 @@
+//! Output of a run: VTK XML PolyData frames for ParaView tied together by a `.pvd` time series,
+//! a CSV series of chosen quantities, and a PNG plot of them at the end.
+//!
+//! File layout in [`OutputSettings::directory`], for a frame at step `N` (6 digits or more):
+//!
+//! - `particles_N.vtp`: every particle (free spheres and structure nodes) as a point with a
+//!   vertex cell; point data `id`, `radius`, `velocity`, `angular_velocity`, `force` (total
+//!   force at the last step), `kind` (0 sphere, 1 node), `structure` (−1 for free spheres),
+//!   `material`.
+//! - `connections_N.vtp`: the nodes of connections as points (point data `id`: the particle
+//!   id) and one line cell per connection; cell data `radius`, `axial_force` (the link's normal
+//!   force, **compression positive, tension negative**, as everywhere in flexdem),
+//!   `shear_force`, `broken` (0/1), `status` (0 cohesive, 1 frictional, 2 broken),
+//!   `structure`, `material`.
+//! - `pfacets_N.vtp`: the nodes of PFacets as points (point data `id`) and one triangle per
+//!   PFacet; cell data `radius`, `structure`, `material`.
+//! - `contacts_N.vtp`: one line per contact from the centre of site 1 to the centre of site 2
+//!   (the contact point for a wall site); cell data `normal_force` (compression positive),
+//!   `force` (on body 2), `shear_force`, `point` (the contact point), `kind1`, `kind2` (0
+//!   particle, 1 edge, 2 face, 3 wall).
+//! - `flexdem.pvd`: the time series, four parts per frame at the simulated time; ParaView
+//!   opens it as a multiblock data set with one block per part. It is rewritten after each of
+//!   the first [`PVD_REWRITE_PERIOD`] frames, then every [`PVD_REWRITE_PERIOD`] frames, and by
+//!   [`Output::finish`].
+//! - `series.csv`: a header row `time_s,step,...` with units in the column names, then one row
+//!   per recorded step (see [`series_columns`]).
+//! - `series.png`: one panel per series, time on the x axis.
+//!
+//! Data arrays are Float64/Int32/Int64/UInt8, little-endian, base64 inline binary
+//! (`header_type="UInt64"`), so values round-trip exactly. Every file but the CSV is written
+//! to a temporary file in the same folder and renamed over the old one, so a failed write
+//! leaves the files already written intact; CSV rows are appended and flushed one by one.
+
+mod files;
+mod font;
+mod frames;
+mod plot;
+mod pvd;
+mod series;
+mod table;
+mod vtk;
+
+pub use frames::{connections_polydata, contacts_polydata, particles_polydata, pfacets_polydata};
+pub use plot::plot_series;
+pub use pvd::{pvd_xml, PvdEntry};
+pub use series::{
+    header_columns, row_values, series_columns, series_values, validate_series, OutputSettings,
+    Quantity, SeriesSpec,
+};
+pub use table::{format_number, CsvSeries};
+pub use vtk::{base64_encode, ArrayValues, CellKind, DataArray, PolyData};
+
+use flexdem_geom::Real;
+use flexdem_integrate::Simulation;
+use std::collections::HashSet;
+use std::path::PathBuf;
+
+/// Name of the `.pvd` time series in the output folder.
+pub const PVD_FILE: &str = "flexdem.pvd";
+/// Name of the CSV series in the output folder.
+pub const CSV_FILE: &str = "series.csv";
+/// Name of the PNG plot in the output folder.
+pub const PLOT_FILE: &str = "series.png";
+
+/// The `.pvd` is rewritten after each of the first this many frames, then after every this
+/// many (so a long run does not rewrite a growing file each frame), and at the end.
+pub const PVD_REWRITE_PERIOD: usize = 64;
+
+/// Why output failed; each names the file or setting and the cause.
+#[derive(Debug, thiserror::Error)]
+pub enum OutputError {
+    /// The output folder could not be created (or is not a folder).
+    #[error("cannot create the output folder {path}: {source}")]
+    Directory {
+        /// The folder.
+        path: PathBuf,
+        /// The cause.
+        source: std::io::Error,
+    },
+    /// A file could not be written.
+    #[error("cannot write {path}: {source}")]
+    Write {
+        /// The file.
+        path: PathBuf,
+        /// The cause.
+        source: std::io::Error,
+    },
+    /// The plot could not be drawn.
+    #[error("cannot draw the plot {path}: {message}")]
+    Plot {
+        /// The PNG file.
+        path: PathBuf,
+        /// The cause.
+        message: String,
+    },
+    /// A series is invalid for this simulation.
+    #[error("output series '{series}': {problem}")]
+    Series {
+        /// The series' name.
+        series: String,
+        /// What is wrong.
+        problem: String,
+    },
+    /// An output setting is invalid.
+    #[error("output setting {what} = {value}: expected {expected}")]
+    Setting {
+        /// The setting.
+        what: String,
+        /// Its value.
+        value: String,
+        /// What is accepted.
+        expected: String,
+    },
+}
+
+/// What a run wrote.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct OutputReport {
+    /// Every file written, each once, in the order first written.
+    pub files: Vec<PathBuf>,
+    /// Number of VTK frames.
+    pub vtk_frames: usize,
+    /// Number of CSV rows (header excluded).
+    pub series_rows: usize,
+}
+
+/// Writes the output of a run as it goes: call [`Output::record`] after each step (and once
+/// before the first) and [`Output::finish`] at the end.
+#[derive(Debug)]
+pub struct Output {
+    settings: OutputSettings,
+    pvd_entries: Vec<PvdEntry>,
+    last_frame_step: Option<u64>,
+    last_row_step: Option<u64>,
+    csv: Option<CsvSeries>,
+    rows: Vec<Vec<Real>>,
+    files: Vec<PathBuf>,
+    noted: HashSet<PathBuf>,
+}
+
+impl Output {
+    /// Checks the settings against `sim`, creates the output folder and, when series are
+    /// recorded, writes the CSV header.
+    pub fn new(settings: &OutputSettings, sim: &Simulation) -> Result<Output, OutputError> {
+        for (what, every) in
+            [("vtk_every", settings.vtk_every), ("series_every", settings.series_every)]
+        {
+            if every == Some(0) {
+                return Err(OutputError::Setting {
+                    what: what.into(),
+                    value: "0".into(),
+                    expected: "a number of steps of at least 1 (or none)".into(),
+                });
+            }
+        }
+        if settings.plot && (settings.series_every.is_none() || settings.series.is_empty()) {
+            return Err(OutputError::Setting {
+                what: "plot".into(),
+                value: "true".into(),
+                expected: "series to plot: set series_every and at least one series".into(),
+            });
+        }
+        validate_series(&settings.series, sim)?;
+        files::create_directory(&settings.directory)?;
+        let mut output = Output {
+            settings: settings.clone(),
+            pvd_entries: Vec::new(),
+            last_frame_step: None,
+            last_row_step: None,
+            csv: None,
+            rows: Vec::new(),
+            files: Vec::new(),
+            noted: HashSet::new(),
+        };
+        if settings.series_every.is_some() {
+            let path = settings.directory.join(CSV_FILE);
+            let csv = CsvSeries::create(&path, &header_columns(&settings.series))?;
+            output.note_file(path);
+            output.csv = Some(csv);
+        }
+        Ok(output)
+    }
+
+    /// The settings this output was made with.
+    pub fn settings(&self) -> &OutputSettings {
+        &self.settings
+    }
+
+    /// The CSV rows recorded so far (time, step, then the series' columns).
+    pub fn rows(&self) -> &[Vec<Real>] {
+        &self.rows
+    }
+
+    /// Writes what is due at step `sim.steps()`: a VTK frame every `vtk_every` steps and a CSV
+    /// row every `series_every` steps (so both at step 0); nothing twice for the same step.
+    pub fn record(&mut self, sim: &Simulation) -> Result<(), OutputError> {
+        let step = sim.steps();
+        let due = |every: Option<u64>| every.is_some_and(|n| step % n == 0);
+        if due(self.settings.vtk_every) && self.last_frame_step != Some(step) {
+            self.write_frame(sim)?;
+        }
+        if due(self.settings.series_every) && self.last_row_step != Some(step) {
+            self.write_row(sim)?;
+        }
+        Ok(())
+    }
+
+    /// Writes the last frame and row (if not written at this step yet), the `.pvd`, flushes
+    /// the CSV and draws the plot; returns the files written.
+    pub fn finish(&mut self, sim: &Simulation) -> Result<OutputReport, OutputError> {
+        let step = sim.steps();
+        if self.settings.vtk_every.is_some() && self.last_frame_step != Some(step) {
+            self.write_frame(sim)?;
+        }
+        if self.settings.series_every.is_some() && self.last_row_step != Some(step) {
+            self.write_row(sim)?;
+        }
+        if self.settings.vtk_every.is_some() {
+            self.write_pvd()?;
+        }
+        if let Some(csv) = self.csv.as_mut() {
+            csv.flush()?;
+        }
+        if self.settings.plot {
+            let path = self.settings.directory.join(PLOT_FILE);
+            plot_series(&path, &self.settings.series, &self.rows)?;
+            self.note_file(path);
+        }
+        Ok(OutputReport {
+            files: self.files.clone(),
+            vtk_frames: self.pvd_entries.len() / 4,
+            series_rows: self.rows.len(),
+        })
+    }
+
+    /// Writes the four `.vtp` files of the current state and rewrites the `.pvd`.
+    fn write_frame(&mut self, sim: &Simulation) -> Result<(), OutputError> {
+        let step = sim.steps();
+        let parts = [
+            ("particles", particles_polydata(sim)),
+            ("connections", connections_polydata(sim)),
+            ("pfacets", pfacets_polydata(sim)),
+            ("contacts", contacts_polydata(sim)),
+        ];
+        let mut entries = Vec::with_capacity(parts.len());
+        for (part, (name, data)) in parts.iter().enumerate() {
+            let file = frame_file_name(name, step);
+            let path = self.settings.directory.join(&file);
+            files::write_atomically(&path, data.to_xml().as_bytes())?;
+            self.note_file(path);
+            entries.push(PvdEntry {
+                time: sim.time(),
+                part: part as u32,
+                name: name.to_string(),
+                file,
+            });
+        }
+        // the frame enters the series only once all its parts are written
+        self.pvd_entries.extend(entries);
+        self.last_frame_step = Some(step);
+        let frames = self.pvd_entries.len() / 4;
+        if frames < PVD_REWRITE_PERIOD || frames % PVD_REWRITE_PERIOD == 0 {
+            self.write_pvd()?;
+        }
+        Ok(())
+    }
+
+    /// Rewrites the `.pvd` with every frame so far.
+    fn write_pvd(&mut self) -> Result<(), OutputError> {
+        let path = self.settings.directory.join(PVD_FILE);
+        files::write_atomically(&path, pvd_xml(&self.pvd_entries).as_bytes())?;
+        self.note_file(path);
+        Ok(())
+    }
+
+    /// Appends one CSV row of the current state.
+    fn write_row(&mut self, sim: &Simulation) -> Result<(), OutputError> {
+        let row = row_values(&self.settings.series, sim);
+        if let Some(csv) = self.csv.as_mut() {
+            csv.append(&row)?;
+        }
+        self.rows.push(row);
+        self.last_row_step = Some(sim.steps());
+        Ok(())
+    }
+
+    /// Adds `path` to the list of files written, once.
+    fn note_file(&mut self, path: PathBuf) {
+        if self.noted.insert(path.clone()) {
+            self.files.push(path);
+        }
+    }
+}
+
+/// The path of the `.pvd` file for `settings`.
+pub fn pvd_path(settings: &OutputSettings) -> PathBuf {
+    settings.directory.join(PVD_FILE)
+}
+
+/// The file name of a frame's part (`particles`, `connections`, `pfacets`, `contacts`).
+pub fn frame_file_name(part: &str, step: u64) -> String {
+    format!("{part}_{step:06}.vtp")
+}
