@@ -1,0 +1,73 @@
+//! Scene files: a TOML description of a simulation (settings, materials, structures from the
+//! builders or from mesh files, free spheres, walls, boundary conditions, loads and outputs),
+//! read into a [`Scene`] ready for [`flexdem_integrate::Simulation::new`]. The keys, their
+//! units and defaults are in `docs/scene-reference.md`.
+//!
+//! Every error names the file, the line and column, the key and what is expected; unknown
+//! keys are errors, with the nearest known key suggested. Relative paths (meshes, the output
+//! folder) are relative to the folder of the scene file.
+
+mod build;
+mod check;
+mod error;
+mod output;
+pub mod packing;
+pub mod placement;
+mod schema;
+mod selection;
+mod spheres;
+mod structures;
+
+pub use error::SceneError;
+
+use crate::output::OutputSettings;
+use error::Ctx;
+use flexdem_elements::Model;
+use flexdem_geom::Real;
+use flexdem_integrate::{Load, Settings};
+use std::path::{Path, PathBuf};
+
+/// How long a run lasts.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum RunLength {
+    /// A number of steps.
+    Steps(u64),
+    /// A simulated time (s).
+    Duration(Real),
+}
+
+/// A scene read from a file: everything needed to create and run a simulation.
+#[derive(Clone, Debug)]
+pub struct Scene {
+    /// Materials, particles, structures, walls, with blocked DOFs and imposed velocities.
+    pub model: Model,
+    /// Time step, gravity, damping, link kinematics.
+    pub settings: Settings,
+    /// Imposed forces and moments, to add with `Simulation::add_load`.
+    pub loads: Vec<Load>,
+    /// How long to run.
+    pub run: RunLength,
+    /// Number of worker threads (None: the machine's default).
+    pub threads: Option<usize>,
+    /// What to write.
+    pub output: OutputSettings,
+    /// The scene file.
+    pub source: PathBuf,
+}
+
+/// Reads and builds the scene file at `path`. Relative paths inside the file are relative to
+/// its folder.
+pub fn load_scene(path: &Path) -> Result<Scene, SceneError> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|source| SceneError::Io { path: path.to_owned(), source })?;
+    parse_scene(&text, path)
+}
+
+/// Builds a scene from its text. `source` names the file in messages and gives the folder
+/// that relative paths (meshes, output) start from; it is not read.
+pub fn parse_scene(text: &str, source: &Path) -> Result<Scene, SceneError> {
+    let file = source.display().to_string();
+    let ctx = Ctx { file: &file, text };
+    let parsed: schema::SceneFile = toml::from_str(text).map_err(|e| ctx.toml_error(&e))?;
+    build::build(parsed, ctx, source)
+}

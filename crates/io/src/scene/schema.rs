@@ -1,0 +1,272 @@
+//! The scene file as written: serde structs mirroring the TOML, every table with
+//! `deny_unknown_fields` and every value that a later check may reject wrapped in
+//! [`Spanned`] so that the error can point at its line. Names (`kind`, `material`, ...) are
+//! kept as strings and resolved in `build.rs` with suggestions for misspellings. See
+//! `docs/scene-reference.md` for the meaning of each key.
+
+use serde::de::{self, Deserializer, Unexpected, Visitor};
+use serde::Deserialize;
+use serde_spanned::Spanned;
+use std::collections::BTreeMap;
+use std::fmt;
+
+/// A value with its byte span in the file.
+pub(crate) type S<T> = Spanned<T>;
+/// Three numbers `[x, y, z]`.
+pub(crate) type V3 = [f64; 3];
+
+/// The whole file.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct SceneFile {
+    pub simulation: S<SimulationSpec>,
+    #[serde(default)]
+    pub materials: BTreeMap<S<String>, S<MaterialSpec>>,
+    #[serde(default)]
+    pub structures: Vec<S<StructureSpec>>,
+    #[serde(default)]
+    pub spheres: Vec<S<SpheresSpec>>,
+    #[serde(default)]
+    pub walls: Vec<S<WallSpec>>,
+    #[serde(default)]
+    pub boundary: Vec<S<BoundarySpec>>,
+    #[serde(default)]
+    pub loads: Vec<S<LoadSpec>>,
+    pub output: Option<S<OutputSpec>>,
+}
+
+/// `[simulation]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct SimulationSpec {
+    pub dt: Option<S<Dt>>,
+    pub safety: Option<S<f64>>,
+    pub steps: Option<S<i64>>,
+    pub duration: Option<S<f64>>,
+    pub gravity: Option<S<V3>>,
+    pub damping: Option<S<f64>>,
+    pub threads: Option<S<i64>>,
+    pub link_kinematics: Option<S<String>>,
+    pub verlet_factor: Option<S<f64>>,
+    pub time_step_interval: Option<S<i64>>,
+}
+
+/// `dt = "auto"` or a number of seconds.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Dt {
+    Auto,
+    Fixed(f64),
+}
+
+impl<'de> Deserialize<'de> for Dt {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct DtVisitor;
+        impl Visitor<'_> for DtVisitor {
+            type Value = Dt;
+            fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                f.write_str("\"auto\" or a time step in seconds (e.g. 1e-6)")
+            }
+            fn visit_str<E: de::Error>(self, v: &str) -> Result<Dt, E> {
+                if v == "auto" {
+                    Ok(Dt::Auto)
+                } else {
+                    Err(E::invalid_value(Unexpected::Str(v), &self))
+                }
+            }
+            fn visit_f64<E: de::Error>(self, v: f64) -> Result<Dt, E> {
+                Ok(Dt::Fixed(v))
+            }
+            fn visit_i64<E: de::Error>(self, v: i64) -> Result<Dt, E> {
+                Ok(Dt::Fixed(v as f64))
+            }
+            fn visit_u64<E: de::Error>(self, v: u64) -> Result<Dt, E> {
+                Ok(Dt::Fixed(v as f64))
+            }
+        }
+        d.deserialize_any(DtVisitor)
+    }
+}
+
+/// `[materials.<name>]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct MaterialSpec {
+    pub young: S<f64>,
+    pub poisson: S<f64>,
+    pub density: S<f64>,
+    pub friction_angle_deg: S<f64>,
+    pub shear_ratio: Option<S<f64>>,
+    pub tensile_strength: Option<S<f64>>,
+    pub shear_strength: Option<S<f64>>,
+    pub failure: Option<S<String>>,
+    pub moments: Option<bool>,
+}
+
+/// `placement = { translate, rotate_deg | axis + angle_deg, scale }`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct PlacementSpec {
+    pub translate: Option<S<V3>>,
+    pub rotate_deg: Option<S<V3>>,
+    pub axis: Option<S<V3>>,
+    pub angle_deg: Option<S<f64>>,
+    pub scale: Option<S<f64>>,
+}
+
+/// `[[structures]]`: the keys of every kind in one table; `build` checks that only the keys
+/// of the chosen `kind` are given.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct StructureSpec {
+    pub name: S<String>,
+    pub kind: S<String>,
+    pub material: S<String>,
+    pub node_radius: S<f64>,
+    pub mass: Option<S<String>>,
+    pub mask: Option<S<i64>>,
+    pub velocity: Option<S<V3>>,
+    pub placement: Option<S<PlacementSpec>>,
+    // chain
+    pub points: Option<S<Vec<V3>>>,
+    pub start: Option<S<V3>>,
+    pub end: Option<S<V3>>,
+    pub segments: Option<S<i64>>,
+    // helix, disc, tube, sphere shell
+    pub center: Option<S<V3>>,
+    pub radius: Option<S<f64>>,
+    pub pitch: Option<S<f64>>,
+    pub turns: Option<S<f64>>,
+    pub segments_per_turn: Option<S<i64>>,
+    // net, membrane
+    pub origin: Option<S<V3>>,
+    pub u_dir: Option<S<V3>>,
+    pub v_dir: Option<S<V3>>,
+    pub size: Option<S<[f64; 2]>>,
+    pub cells: Option<S<[i64; 2]>>,
+    pub diagonals: Option<S<bool>>,
+    // disc
+    pub normal: Option<S<V3>>,
+    pub rings: Option<S<i64>>,
+    // tube
+    pub axis: Option<S<V3>>,
+    pub length: Option<S<f64>>,
+    pub around: Option<S<i64>>,
+    pub along: Option<S<i64>>,
+    // sphere shell
+    pub base: Option<S<String>>,
+    pub subdivisions: Option<S<i64>>,
+    // mesh
+    pub file: Option<S<String>>,
+    pub merge_tolerance: Option<S<f64>>,
+}
+
+/// An axis-aligned box `{ min = [..], max = [..] }`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct BoxSpec {
+    pub min: S<V3>,
+    pub max: S<V3>,
+}
+
+/// `[[spheres]]`: one sphere, a lattice or a random packing.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct SpheresSpec {
+    pub name: Option<S<String>>,
+    pub kind: S<String>,
+    pub material: S<String>,
+    pub radius: Option<S<f64>>,
+    pub radius_range: Option<S<[f64; 2]>>,
+    pub center: Option<S<V3>>,
+    #[serde(rename = "box")]
+    pub region: Option<S<BoxSpec>>,
+    pub spacing: Option<S<f64>>,
+    pub count: Option<S<i64>>,
+    pub seed: Option<S<i64>>,
+    pub velocity: Option<S<V3>>,
+    pub angular_velocity: Option<S<V3>>,
+    pub mask: Option<S<i64>>,
+}
+
+/// `[[walls]]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct WallSpec {
+    pub point: S<V3>,
+    pub normal: S<V3>,
+    pub material: S<String>,
+    pub velocity: Option<S<V3>>,
+    pub mask: Option<S<i64>>,
+}
+
+/// A plane `{ point, normal, tolerance }`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct PlaneSpec {
+    pub point: S<V3>,
+    pub normal: S<V3>,
+    pub tolerance: Option<S<f64>>,
+}
+
+/// `select = { ... }`: which particles a boundary condition, load or output applies to.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct SelectSpec {
+    pub structure: Option<S<String>>,
+    pub spheres: Option<S<String>>,
+    pub ids: Option<S<Vec<i64>>>,
+    pub side: Option<S<String>>,
+    #[serde(rename = "box")]
+    pub region: Option<S<BoxSpec>>,
+    pub plane: Option<S<PlaneSpec>>,
+}
+
+/// `[[boundary]]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct BoundarySpec {
+    pub select: S<SelectSpec>,
+    pub block: Option<S<String>>,
+    pub velocity: Option<S<V3>>,
+    pub angular_velocity: Option<S<V3>>,
+}
+
+/// `ramp = { start, duration }`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RampSpec {
+    pub start: S<f64>,
+    pub duration: S<f64>,
+}
+
+/// `[[loads]]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct LoadSpec {
+    pub select: S<SelectSpec>,
+    pub force: Option<S<V3>>,
+    pub total_force: Option<S<V3>>,
+    pub moment: Option<S<V3>>,
+    pub ramp: Option<S<RampSpec>>,
+}
+
+/// `[output]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct OutputSpec {
+    pub directory: Option<S<String>>,
+    pub vtk_every: Option<S<i64>>,
+    pub series_every: Option<S<i64>>,
+    pub plot: Option<bool>,
+    #[serde(default)]
+    pub series: Vec<S<SeriesSpecToml>>,
+}
+
+/// `[[output.series]]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct SeriesSpecToml {
+    pub name: S<String>,
+    pub quantity: S<String>,
+    pub of: Option<S<SelectSpec>>,
+}
