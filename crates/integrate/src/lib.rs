@@ -19,6 +19,6 @@ pub use error::SimulationError;
 pub use integrator::{kinetic_energy, leapfrog_step, StepWork};
 pub use links::{LinkEvents, Links};
 pub use settings::{Load, Ramp, Settings, TimeStep};
-pub use simulation::{Control, Energy, ForceHook, Simulation};
+pub use simulation::{Control, Energy, ForceHook, Simulation, Snapshot};
 pub use time_step::{critical_step_from_stiffness, p_wave_time_step, StiffnessSums};
 pub use timers::{Stage, Timers};

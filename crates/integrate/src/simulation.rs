@@ -26,7 +26,7 @@ pub type ForceHook = Box<dyn FnMut(Real, &Particles, &mut [Vec3], &mut [Vec3]) +
 
 /// Energy terms of a simulation (model.md §6). Works and dissipations are cumulative since the
 /// start; kinetic and elastic terms are the current values.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Energy {
     /// Translational kinetic energy (J).
     pub kinetic_translation: Real,
@@ -65,6 +65,44 @@ impl Energy {
             + self.links_dissipated
             + self.friction
     }
+}
+
+/// Everything a simulation needs to continue exactly where it was: the model, settings,
+/// links and contacts with their history, loads, clock, time-step bookkeeping and energy
+/// terms. A simulation rebuilt from it with [`Simulation::from_snapshot`] continues
+/// bit-identically to the original (the user's force hook is not part of it).
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
+pub struct Snapshot {
+    /// Bodies, structures, materials.
+    pub model: Model,
+    /// Settings.
+    pub settings: Settings,
+    /// Beam links with their state.
+    pub links: Links,
+    /// Contacts with their state, sorted by key.
+    pub contacts: Vec<crate::contacts::Contact>,
+    /// Friction dissipated by contacts that have ended.
+    pub ended_dissipation: Real,
+    /// Imposed loads.
+    pub loads: Vec<Load>,
+    /// Simulated time.
+    pub time: Real,
+    /// Steps done.
+    pub steps: u64,
+    /// Time step in use.
+    pub dt: Real,
+    /// Last critical step estimate.
+    pub critical_dt: Real,
+    /// Step of the last full time-step estimate.
+    pub dt_updated_at: u64,
+    /// Per-particle stiffness sums of that estimate, with the contacts made since.
+    pub stiffness: StiffnessSums,
+    /// Energy terms.
+    pub energy: Energy,
+    /// Works of the last step not yet added to `energy`.
+    pub pending_work: (Real, Real),
+    /// Warnings raised so far.
+    pub warnings: Vec<String>,
 }
 
 /// A simulation in progress.
@@ -143,6 +181,90 @@ impl Simulation {
         sim.energy.kinetic_translation = kt;
         sim.energy.kinetic_rotation = kr;
         Ok(sim)
+    }
+
+    /// A copy of the whole state (see [`Snapshot`]).
+    pub fn snapshot(&self) -> Snapshot {
+        Snapshot {
+            model: self.model.clone(),
+            settings: self.settings.clone(),
+            links: self.links.clone(),
+            contacts: self.contacts.list.clone(),
+            ended_dissipation: self.contacts.ended_dissipation,
+            loads: self.loads.clone(),
+            time: self.time,
+            steps: self.steps,
+            dt: self.dt,
+            critical_dt: self.critical_dt,
+            dt_updated_at: self.dt_updated_at,
+            stiffness: self.stiffness.clone(),
+            energy: self.energy,
+            pending_work: self.pending_work,
+            warnings: self.warnings.clone(),
+        }
+    }
+
+    /// The simulation a snapshot describes, checked as [`Simulation::new`] checks a new one
+    /// and for consistency between its parts (a snapshot read from a file may be damaged).
+    pub fn from_snapshot(s: Snapshot) -> Result<Self, SimulationError> {
+        s.settings.validate()?;
+        s.model.validate()?;
+        check_masses(&s.model)?;
+        let n = s.model.particles.len();
+        let n_links = s.model.connections.len();
+        let consistent = s.links.len() == n_links
+            && s.links.params.len() == n_links
+            && s.links.state.len() == n_links
+            && s.stiffness.translational.len() == s.stiffness.rotational.len()
+            && (s.stiffness.translational.is_empty() || s.stiffness.translational.len() == n)
+            && s.loads.iter().all(|l| l.particles.iter().all(|&i| (i as usize) < n))
+            && s.contacts.iter().all(|c| {
+                [&c.site1, &c.site2]
+                    .iter()
+                    .all(|site| site.nodes[..site.node_count()].iter().all(|&i| (i as usize) < n))
+            })
+            && s.dt > 0.0
+            && s.dt.is_finite()
+            && s.time.is_finite();
+        if !consistent {
+            return Err(SimulationError::Setting {
+                what: "snapshot".into(),
+                value: "inconsistent parts (links, contacts or loads do not match the model)"
+                    .into(),
+                expected: "a snapshot written by Simulation::snapshot".into(),
+            });
+        }
+        let mut links = s.links;
+        links.forces = vec![Default::default(); n_links];
+        let mut contacts = Contacts::new(&s.model);
+        contacts.list = s.contacts;
+        contacts.ended_dissipation = s.ended_dissipation;
+        let collider = Collider::new(&s.model, s.settings.verlet_factor);
+        let adjacency = s.model.adjacency();
+        Ok(Simulation {
+            model: s.model,
+            settings: s.settings,
+            links,
+            contacts,
+            collider,
+            loads: s.loads,
+            adjacency,
+            dt_updated_at: s.dt_updated_at,
+            stiffness: s.stiffness,
+            force_hook: None,
+            force: vec![Vec3::zeros(); n],
+            torque: vec![Vec3::zeros(); n],
+            external_force: vec![Vec3::zeros(); n],
+            external_torque: vec![Vec3::zeros(); n],
+            time: s.time,
+            steps: s.steps,
+            dt: s.dt,
+            critical_dt: s.critical_dt,
+            energy: s.energy,
+            pending_work: s.pending_work,
+            timers: Timers::default(),
+            warnings: s.warnings,
+        })
     }
 
     /// Adds an imposed load, checking its particle ids and values.

@@ -9,7 +9,7 @@ use flexdem_elements::Model;
 use flexdem_geom::{Real, Vec3};
 
 /// Per-particle stiffness sums, per axis, translational and rotational.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct StiffnessSums {
     /// Translational stiffness per axis (N/m).
     pub translational: Vec<Vec3>,
