@@ -349,16 +349,20 @@ impl Contacts {
             self.list.push(c);
         }
         // handover: a new contact takes the state of an ended one of the same owners, the
-        // nearest within the contact's size (a touching that moved to the next feature)
+        // nearest within the contact's size (a touching that moved to the next feature);
+        // the ended ones are sorted by owners, so each new contact looks only at its own
+        let mut ended: Vec<usize> = (0..old.len()).filter(|&o| !taken[o]).collect();
+        ended.sort_unstable_by_key(|&o| (old[o].owners, o));
         for &n in &fresh {
             let c = &self.list[n];
             let reach = c.site1.radius + c.site2.radius;
             let point = all[n].candidate.center1;
-            let best = old
+            let start = ended.partition_point(|&o| old[o].owners < c.owners);
+            let best = ended[start..]
                 .iter()
-                .enumerate()
-                .filter(|(o, oc)| !taken[*o] && oc.owners == c.owners)
-                .map(|(o, oc)| (o, (oc.point - point).norm()))
+                .take_while(|&&o| old[o].owners == c.owners)
+                .filter(|&&o| !taken[o])
+                .map(|&o| (o, (old[o].point - point).norm()))
                 .filter(|&(_, d)| d <= reach)
                 .min_by(|a, b| a.1.total_cmp(&b.1));
             if let Some((o, _)) = best {
