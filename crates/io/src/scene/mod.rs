@@ -28,7 +28,7 @@ use flexdem_integrate::{Load, Settings};
 use std::path::{Path, PathBuf};
 
 /// How long a run lasts.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum RunLength {
     /// A number of steps.
     Steps(u64),

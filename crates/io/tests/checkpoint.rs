@@ -1,0 +1,405 @@
+//! Checkpoint files: a run restarted from a checkpoint continues bit-identically, a failed
+//! write leaves the previous checkpoint intact, and every kind of damaged or foreign file
+//! gives its own error, never a panic.
+
+use flexdem_contact::Material;
+use flexdem_elements::builders::{chain, straight_line, StructureOptions};
+use flexdem_elements::Model;
+use flexdem_geom::Vec3;
+use flexdem_integrate::{Settings, Simulation};
+use flexdem_io::checkpoint::{
+    read_checkpoint, restore_checkpoint, write_checkpoint, Checkpoint, CheckpointError,
+    OutputProgress, CHECKPOINT_HEADER_LEN, CHECKPOINT_VERSION,
+};
+use flexdem_io::output::{OutputSettings, Quantity, SeriesSpec};
+use flexdem_io::scene::{parse_scene, RunLength};
+use proptest::prelude::*;
+use std::path::{Path, PathBuf};
+use std::sync::OnceLock;
+
+fn output_settings(dir: &Path) -> OutputSettings {
+    OutputSettings {
+        directory: dir.to_path_buf(),
+        vtk_every: Some(10),
+        series_every: Some(5),
+        series: vec![SeriesSpec { name: "energy".into(), quantity: Quantity::Energy }],
+        plot: false,
+    }
+}
+
+fn checkpoint_of(sim: &Simulation) -> Checkpoint {
+    Checkpoint {
+        snapshot: sim.snapshot(),
+        run: RunLength::Duration(1.5),
+        threads: Some(3),
+        output: output_settings(Path::new("out/run")),
+        scene: PathBuf::from("scenes/MARKERscene.toml"),
+        output_progress: OutputProgress {
+            vtk_frames: vec![(0, 0.0), (10, 1.25e-4), (20, 2.5e-4)],
+            series_rows: 7,
+        },
+    }
+}
+
+/// A cable with one end blocked and a free sphere resting on a wall: links and a contact.
+fn small_simulation() -> Simulation {
+    let mut model = Model::new();
+    let m = model.add_material(Material::new(1e7, 0.3, 1000.0, 0.5).unwrap()).unwrap();
+    let heavy = model.add_material(Material::new(1e7, 0.3, 1e5, 0.5).unwrap()).unwrap();
+    model.add_wall(Vec3::zeros(), Vec3::z(), m).unwrap();
+    model.add_sphere(Vec3::new(0.0, 0.0, 0.0498), 0.05, heavy).unwrap();
+    let points = straight_line(Vec3::new(-1.0, 0.0, 1.0), Vec3::new(-0.4, 0.0, 1.0), 3).unwrap();
+    chain(&mut model, &points, &StructureOptions::new("cable", 0.01, m)).unwrap();
+    model.particles.blocked[1] = flexdem_elements::Dofs::ALL;
+    let settings = Settings { gravity: Vec3::new(0.0, 0.0, -9.81), ..Settings::default() };
+    let mut sim = Simulation::new(model, settings).unwrap();
+    sim.run(20).unwrap();
+    assert!(!sim.contacts.list.is_empty());
+    sim
+}
+
+/// The bytes of a valid checkpoint file of [`small_simulation`].
+fn valid_file() -> &'static [u8] {
+    static BYTES: OnceLock<Vec<u8>> = OnceLock::new();
+    BYTES.get_or_init(|| {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("valid.ckp");
+        write_checkpoint(&path, &checkpoint_of(&small_simulation())).unwrap();
+        std::fs::read(&path).unwrap()
+    })
+}
+
+/// Reads `bytes` as a checkpoint file.
+fn read_bytes(bytes: &[u8]) -> Result<Checkpoint, CheckpointError> {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("c.ckp");
+    std::fs::write(&path, bytes).unwrap();
+    let result = read_checkpoint(&path);
+    if let Err(e) = &result {
+        assert!(e.to_string().contains(&path.display().to_string()), "file not named: {e}");
+    }
+    result
+}
+
+/// Rewrites the header's length and checksum for a new payload.
+fn with_payload(payload: &[u8]) -> Vec<u8> {
+    let mut bytes = valid_file()[..CHECKPOINT_HEADER_LEN].to_vec();
+    bytes[12..20].copy_from_slice(&(payload.len() as u64).to_le_bytes());
+    bytes[20..24].copy_from_slice(&crc32fast::hash(payload).to_le_bytes());
+    bytes.extend_from_slice(payload);
+    bytes
+}
+
+fn encoded<T: serde::Serialize>(value: &T) -> Vec<u8> {
+    bincode::serde::encode_to_vec(value, bincode::config::standard()).unwrap()
+}
+
+fn files_in(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
+}
+
+fn assert_same_state(a: &Simulation, b: &Simulation) {
+    assert_eq!(a.steps(), b.steps());
+    assert_eq!(a.time().to_bits(), b.time().to_bits());
+    assert_eq!(a.dt().to_bits(), b.dt().to_bits());
+    let (pa, pb) = (&a.model.particles, &b.model.particles);
+    assert!(pa.pos == pb.pos, "positions differ");
+    assert!(pa.vel == pb.vel, "velocities differ");
+    assert!(pa.ori == pb.ori, "orientations differ");
+    assert!(pa.ang_vel == pb.ang_vel, "angular velocities differ");
+    assert_eq!(a.energy(), b.energy());
+    assert_eq!(a.contacts.list.len(), b.contacts.list.len());
+    // The whole state, bit for bit: contact and link history included.
+    assert!(encoded(&a.snapshot()) == encoded(&b.snapshot()), "snapshots differ");
+}
+
+/// The net_drop example with the rock released just above the net, so that it touches it
+/// within a few steps.
+fn net_drop() -> Simulation {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/net_drop.toml");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let text = text.replace("center = [0, 0, 0.5]", "center = [0.01, 0.02, 0.1025]");
+    let scene = parse_scene(&text, &path).unwrap();
+    let mut sim = Simulation::new(scene.model, scene.settings).unwrap();
+    for load in scene.loads {
+        sim.add_load(load).unwrap();
+    }
+    sim
+}
+
+/// Runs `n` steps; returns how many of them ended with a contact.
+fn count_touching_steps(sim: &mut Simulation, n: u64) -> u64 {
+    (0..n)
+        .filter(|_| {
+            sim.step().unwrap();
+            !sim.contacts.list.is_empty()
+        })
+        .count() as u64
+}
+
+#[test]
+fn a_run_restarted_from_a_checkpoint_file_continues_bit_identically() {
+    let mut a = net_drop();
+    // The rock bounces on the sagging net: take the checkpoint while they touch, with some
+    // contact history behind it.
+    a.run(1000).unwrap();
+    let mut steps = 0;
+    while a.contacts.list.is_empty() {
+        assert!(steps < 5000, "the rock never touched the net");
+        a.step().unwrap();
+        steps += 1;
+    }
+    a.step().unwrap();
+    assert!(!a.contacts.list.is_empty() && !a.links.is_empty());
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("net.ckp");
+    let original = checkpoint_of(&a);
+    write_checkpoint(&path, &original).unwrap();
+    let touching_steps = count_touching_steps(&mut a, 1500);
+    assert!(touching_steps > 0, "no contact after the checkpoint: the test shows little");
+
+    let (mut b, info) = restore_checkpoint(&path).unwrap();
+    assert_eq!(info.run, original.run);
+    assert_eq!(info.threads, original.threads);
+    assert_eq!(info.output, original.output);
+    assert_eq!(info.scene, original.scene);
+    assert_eq!(info.output_progress, original.output_progress);
+    assert_eq!(count_touching_steps(&mut b, 1500), touching_steps);
+    assert_same_state(&a, &b);
+}
+
+#[test]
+fn a_checkpoint_round_trips_bit_exactly() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("c.ckp");
+    let mut c = checkpoint_of(&small_simulation());
+    // Awkward floats and long strings survive too.
+    c.output_progress.vtk_frames.push((u64::MAX, -0.0));
+    c.output_progress.vtk_frames.push((1, f64::MIN_POSITIVE / 3.0));
+    c.scene = PathBuf::from("é/".repeat(40_000) + "scene.toml");
+    c.output.series = (0..2000)
+        .map(|i| SeriesSpec { name: format!("s{i}"), quantity: Quantity::Position(0) })
+        .collect();
+    write_checkpoint(&path, &c).unwrap();
+    let first = std::fs::read(&path).unwrap();
+    let back = read_checkpoint(&path).unwrap();
+    assert!(encoded(&back) == encoded(&c), "the checkpoint changed on the way");
+    assert_eq!(back.output_progress.vtk_frames[3].1.to_bits(), (-0.0f64).to_bits());
+    write_checkpoint(&path, &back).unwrap();
+    assert!(std::fs::read(&path).unwrap() == first, "writing it again gives other bytes");
+    assert_eq!(files_in(dir.path()), ["c.ckp"]);
+}
+
+#[test]
+fn a_failed_write_leaves_the_previous_checkpoint_untouched() {
+    let sim = small_simulation();
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("run.ckp");
+    write_checkpoint(&path, &checkpoint_of(&sim)).unwrap();
+    let before = std::fs::read(&path).unwrap();
+    let mut newer = checkpoint_of(&sim);
+    newer.output_progress.series_rows = 99;
+
+    // The temporary file's place is taken by a folder.
+    let blocker = dir.path().join(format!(".run.ckp.tmp-{}", std::process::id()));
+    std::fs::create_dir(&blocker).unwrap();
+    std::fs::write(blocker.join("keep"), b"x").unwrap();
+    let err = write_checkpoint(&path, &newer).unwrap_err();
+    assert!(matches!(err, CheckpointError::Write { .. }), "{err:?}");
+    assert!(err.to_string().contains("run.ckp"), "{err}");
+    assert!(std::fs::read(&path).unwrap() == before, "the previous checkpoint changed");
+    assert!(blocker.join("keep").exists(), "a folder that is not ours was removed");
+    std::fs::remove_dir_all(&blocker).unwrap();
+    assert_eq!(files_in(dir.path()), ["run.ckp"]);
+
+    // A checkpoint that cannot be encoded (a path that is not UTF-8) writes nothing.
+    #[cfg(unix)]
+    {
+        use std::os::unix::ffi::OsStrExt;
+        let mut bad = checkpoint_of(&sim);
+        bad.scene = PathBuf::from(std::ffi::OsStr::from_bytes(b"scene-\xff.toml"));
+        let err = write_checkpoint(&path, &bad).unwrap_err();
+        assert!(matches!(err, CheckpointError::Encode { .. }), "{err:?}");
+        assert!(std::fs::read(&path).unwrap() == before);
+        assert_eq!(files_in(dir.path()), ["run.ckp"]);
+    }
+
+    // The rename fails (the target is a folder that is not empty): the temporary file, fully
+    // written, is removed.
+    let target = dir.path().join("taken.ckp");
+    std::fs::create_dir(&target).unwrap();
+    std::fs::write(target.join("inside"), b"x").unwrap();
+    let err = write_checkpoint(&target, &newer).unwrap_err();
+    assert!(matches!(err, CheckpointError::Write { .. }), "{err:?}");
+    assert_eq!(files_in(dir.path()), ["run.ckp", "taken.ckp"]);
+
+    // The target's folder is gone.
+    let gone = dir.path().join("gone");
+    std::fs::create_dir(&gone).unwrap();
+    write_checkpoint(&gone.join("run.ckp"), &newer).unwrap();
+    std::fs::remove_dir_all(&gone).unwrap();
+    let err = write_checkpoint(&gone.join("run.ckp"), &newer).unwrap_err();
+    assert!(matches!(err, CheckpointError::Write { .. }), "{err:?}");
+    assert!(!gone.exists());
+
+    // Then a write that can succeed replaces the file.
+    write_checkpoint(&path, &newer).unwrap();
+    assert_eq!(read_checkpoint(&path).unwrap().output_progress.series_rows, 99);
+    assert_eq!(files_in(dir.path()), ["run.ckp", "taken.ckp"]);
+}
+
+#[test]
+fn truncated_files_are_reported_as_such() {
+    let valid = valid_file();
+    let n = valid.len();
+    let lengths =
+        (0..CHECKPOINT_HEADER_LEN + 64).chain((CHECKPOINT_HEADER_LEN + 64..n).step_by(97));
+    for len in lengths.chain([n - 1]) {
+        match read_bytes(&valid[..len]) {
+            Err(CheckpointError::TooShort { len: l, .. }) if len < CHECKPOINT_HEADER_LEN => {
+                assert_eq!(l, len as u64)
+            }
+            Err(CheckpointError::Truncated { declared, available, .. })
+                if len >= CHECKPOINT_HEADER_LEN =>
+            {
+                assert_eq!(declared as usize, n - CHECKPOINT_HEADER_LEN);
+                assert_eq!(available as usize, len - CHECKPOINT_HEADER_LEN);
+            }
+            other => panic!("length {len}: {other:?}"),
+        }
+    }
+    let mut longer = valid.to_vec();
+    longer.push(0);
+    assert!(matches!(read_bytes(&longer), Err(CheckpointError::TrailingBytes { extra: 1, .. })));
+}
+
+#[test]
+fn every_flipped_byte_is_caught() {
+    let valid = valid_file();
+    let n = valid.len();
+    let payload_positions = (CHECKPOINT_HEADER_LEN..n).step_by(53).chain([n - 1]);
+    for i in (0..CHECKPOINT_HEADER_LEN).chain(payload_positions) {
+        for flip in [0x01u8, 0x80, 0xff] {
+            let mut bytes = valid.to_vec();
+            bytes[i] ^= flip;
+            let err = read_bytes(&bytes).map(|_| ()).unwrap_err();
+            let expected = match i {
+                0..8 => matches!(err, CheckpointError::NotACheckpoint { .. }),
+                8..12 => matches!(err, CheckpointError::Version { .. }),
+                12..20 => matches!(
+                    err,
+                    CheckpointError::Truncated { .. } | CheckpointError::TrailingBytes { .. }
+                ),
+                _ => matches!(err, CheckpointError::Damaged { .. }),
+            };
+            assert!(expected, "byte {i} ^ {flip:#x}: {err:?}");
+        }
+    }
+}
+
+#[test]
+fn foreign_and_odd_files_give_their_error() {
+    let valid = valid_file();
+    let not_ours = read_bytes(b"PK\x03\x04 this is a zip file, or something else entirely");
+    assert!(matches!(not_ours, Err(CheckpointError::NotACheckpoint { .. })), "{not_ours:?}");
+    assert!(matches!(read_bytes(b"FLX"), Err(CheckpointError::TooShort { len: 3, .. })));
+    assert!(matches!(read_bytes(b"{}"), Err(CheckpointError::NotACheckpoint { .. })));
+    let empty = read_bytes(b"");
+    assert!(matches!(empty, Err(CheckpointError::TooShort { len: 0, .. })), "{empty:?}");
+
+    for (version, word) in [(CHECKPOINT_VERSION + 1, "newer"), (0, "older")] {
+        let mut bytes = valid.to_vec();
+        bytes[8..12].copy_from_slice(&version.to_le_bytes());
+        let err = read_bytes(&bytes).map(|_| ()).unwrap_err();
+        let CheckpointError::Version { found, expected, .. } = &err else { panic!("{err:?}") };
+        assert_eq!((*found, *expected), (version, CHECKPOINT_VERSION));
+        let message = err.to_string();
+        assert!(message.contains(word) && message.contains(&format!("{version}")), "{message}");
+    }
+
+    // A length so large that nothing could hold it is checked against the file first.
+    let mut bytes = valid.to_vec();
+    bytes[12..20].copy_from_slice(&u64::MAX.to_le_bytes());
+    assert!(matches!(read_bytes(&bytes), Err(CheckpointError::Truncated { .. })));
+
+    let dir = tempfile::tempdir().unwrap();
+    let err = read_checkpoint(dir.path()).map(|_| ()).unwrap_err();
+    assert!(matches!(err, CheckpointError::Read { .. }), "a folder: {err:?}");
+    let missing = dir.path().join("missing.ckp");
+    let err = read_checkpoint(&missing).map(|_| ()).unwrap_err();
+    assert!(matches!(err, CheckpointError::Read { .. }) && err.to_string().contains("missing"));
+}
+
+#[test]
+fn a_payload_with_a_valid_checksum_is_still_checked() {
+    let valid = valid_file();
+    let payload = &valid[CHECKPOINT_HEADER_LEN..];
+    let garbage: Vec<u8> =
+        (0..4000u32).map(|i| (i.wrapping_mul(2_654_435_761) >> 13) as u8).collect();
+    for bad in [&garbage[..], &[][..], &payload[..payload.len() / 2]] {
+        let result = read_bytes(&with_payload(bad));
+        assert!(matches!(result, Err(CheckpointError::Decode { .. })), "{result:?}");
+    }
+    let mut longer = payload.to_vec();
+    longer.push(0);
+    let err = read_bytes(&with_payload(&longer)).map(|_| ()).unwrap_err();
+    assert!(err.to_string().contains("left over"), "{err}");
+
+    // A string whose length is set to 2^62 bytes: refused, without trying to allocate it.
+    let marker = b"MARKERscene.toml";
+    let at = payload.windows(marker.len()).position(|w| w == marker).unwrap();
+    let length_at = at - "scenes/".len() - 1;
+    assert_eq!(payload[length_at] as usize, "scenes/MARKERscene.toml".len());
+    let mut crafted = payload[..length_at].to_vec();
+    crafted.push(253); // bincode varint: a u64 follows
+    crafted.extend_from_slice(&(1u64 << 62).to_le_bytes());
+    crafted.extend_from_slice(&payload[length_at + 1..]);
+    let result = read_bytes(&with_payload(&crafted));
+    assert!(matches!(result, Err(CheckpointError::Decode { .. })), "{result:?}");
+}
+
+#[test]
+fn a_state_the_engine_refuses_is_reported_with_the_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("refused.ckp");
+    let mut c = checkpoint_of(&small_simulation());
+    c.snapshot.dt = -1.0;
+    write_checkpoint(&path, &c).unwrap();
+    let c = read_checkpoint(&path).unwrap();
+    let err = c.clone().into_simulation().map(|_| ()).unwrap_err();
+    assert!(matches!(err, CheckpointError::Refused { path: None, .. }), "{err:?}");
+    let err = restore_checkpoint(&path).map(|_| ()).unwrap_err();
+    assert!(matches!(&err, CheckpointError::Refused { path: Some(p), .. } if *p == path));
+    assert!(err.to_string().contains("refused.ckp"), "{err}");
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 200, ..ProptestConfig::default() })]
+
+    /// Random damage (flipped bytes, then possibly a cut or an extension) is always reported
+    /// as an error, never a panic.
+    #[test]
+    fn random_damage_is_always_an_error(
+        flips in prop::collection::vec((any::<prop::sample::Index>(), 1u8..=255), 1..5),
+        cut in prop::option::of(any::<prop::sample::Index>()),
+        extra in prop::collection::vec(any::<u8>(), 0..3),
+    ) {
+        let mut bytes = valid_file().to_vec();
+        for (i, flip) in &flips {
+            let i = i.index(bytes.len());
+            bytes[i] ^= flip;
+        }
+        if let Some(cut) = cut {
+            bytes.truncate(cut.index(bytes.len()));
+        }
+        bytes.extend_from_slice(&extra);
+        if bytes != valid_file() {
+            prop_assert!(read_bytes(&bytes).is_err());
+        }
+    }
+}
