@@ -50,6 +50,7 @@ pub use series::{
 pub use table::{format_number, CsvSeries};
 pub use vtk::{base64_encode, ArrayValues, CellKind, DataArray, PolyData};
 
+use crate::checkpoint::OutputProgress;
 use flexdem_geom::Real;
 use flexdem_integrate::Simulation;
 use std::collections::HashSet;
@@ -101,6 +102,14 @@ pub enum OutputError {
         /// What is wrong.
         problem: String,
     },
+    /// The output of an earlier run cannot be continued (see [`Output::resume`]).
+    #[error("cannot continue the output in {path}: {problem}")]
+    Resume {
+        /// The file that does not match the checkpoint.
+        path: PathBuf,
+        /// What does not match.
+        problem: String,
+    },
     /// An output setting is invalid.
     #[error("output setting {what} = {value}: expected {expected}")]
     Setting {
@@ -130,6 +139,8 @@ pub struct OutputReport {
 pub struct Output {
     settings: OutputSettings,
     pvd_entries: Vec<PvdEntry>,
+    /// Step and time of each frame in `pvd_entries`.
+    frames: Vec<(u64, Real)>,
     last_frame_step: Option<u64>,
     last_row_step: Option<u64>,
     csv: Option<CsvSeries>,
@@ -142,29 +153,12 @@ impl Output {
     /// Checks the settings against `sim`, creates the output folder and, when series are
     /// recorded, writes the CSV header.
     pub fn new(settings: &OutputSettings, sim: &Simulation) -> Result<Output, OutputError> {
-        for (what, every) in
-            [("vtk_every", settings.vtk_every), ("series_every", settings.series_every)]
-        {
-            if every == Some(0) {
-                return Err(OutputError::Setting {
-                    what: what.into(),
-                    value: "0".into(),
-                    expected: "a number of steps of at least 1 (or none)".into(),
-                });
-            }
-        }
-        if settings.plot && (settings.series_every.is_none() || settings.series.is_empty()) {
-            return Err(OutputError::Setting {
-                what: "plot".into(),
-                value: "true".into(),
-                expected: "series to plot: set series_every and at least one series".into(),
-            });
-        }
-        validate_series(&settings.series, sim)?;
+        check_settings(settings, sim)?;
         files::create_directory(&settings.directory)?;
         let mut output = Output {
             settings: settings.clone(),
             pvd_entries: Vec::new(),
+            frames: Vec::new(),
             last_frame_step: None,
             last_row_step: None,
             csv: None,
@@ -179,6 +173,72 @@ impl Output {
             output.csv = Some(csv);
         }
         Ok(output)
+    }
+
+    /// Continues the output of an earlier run from a checkpoint, for `sim` restored from it:
+    /// the `.pvd` keeps the checkpoint's frames (whose `.vtp` files must still be there) and
+    /// `series.csv` keeps its header and its first `progress.series_rows` rows (rows written
+    /// after the checkpoint are dropped, as are frames), then both go on as with
+    /// [`Output::new`]. The plot at the end covers the whole series.
+    pub fn resume(
+        settings: &OutputSettings,
+        sim: &Simulation,
+        progress: &OutputProgress,
+    ) -> Result<Output, OutputError> {
+        check_settings(settings, sim)?;
+        files::create_directory(&settings.directory)?;
+        let mut output = Output {
+            settings: settings.clone(),
+            pvd_entries: Vec::new(),
+            frames: Vec::new(),
+            last_frame_step: None,
+            last_row_step: None,
+            csv: None,
+            rows: Vec::new(),
+            files: Vec::new(),
+            noted: HashSet::new(),
+        };
+        for &(step, time) in &progress.vtk_frames {
+            for (part, name) in PARTS.iter().enumerate() {
+                let file = frame_file_name(name, step);
+                let path = settings.directory.join(&file);
+                if !path.is_file() {
+                    return Err(OutputError::Resume {
+                        path,
+                        problem: format!("the frame of step {step} is missing"),
+                    });
+                }
+                output.pvd_entries.push(PvdEntry {
+                    time,
+                    part: part as u32,
+                    name: name.to_string(),
+                    file,
+                });
+            }
+            output.frames.push((step, time));
+            output.last_frame_step = Some(step);
+        }
+        if settings.series_every.is_some() {
+            let path = settings.directory.join(CSV_FILE);
+            let columns = header_columns(&settings.series);
+            let rows = usize::try_from(progress.series_rows).unwrap_or(usize::MAX);
+            let (csv, kept) = if rows == 0 {
+                (CsvSeries::create(&path, &columns)?, Vec::new())
+            } else {
+                CsvSeries::resume(&path, &columns, rows)?
+            };
+            output.last_row_step = kept.last().and_then(|row| row.get(1)).map(|&s| s as u64);
+            output.rows = kept;
+            output.note_file(path);
+            output.csv = Some(csv);
+        }
+        Ok(output)
+    }
+
+    /// What has been written so far, for a checkpoint: the step and time of each VTK frame
+    /// and the number of CSV rows ([`Output::resume`] continues from it).
+    pub fn progress(&self) -> OutputProgress {
+        OutputProgress { vtk_frames: self.frames.clone(), series_rows: self.rows.len() as u64 }
     }
 
     /// The settings this output was made with.
@@ -237,10 +297,10 @@ impl Output {
     fn write_frame(&mut self, sim: &Simulation) -> Result<(), OutputError> {
         let step = sim.steps();
         let parts = [
-            ("particles", particles_polydata(sim)),
-            ("connections", connections_polydata(sim)),
-            ("pfacets", pfacets_polydata(sim)),
-            ("contacts", contacts_polydata(sim)),
+            (PARTS[0], particles_polydata(sim)),
+            (PARTS[1], connections_polydata(sim)),
+            (PARTS[2], pfacets_polydata(sim)),
+            (PARTS[3], contacts_polydata(sim)),
         ];
         let mut entries = Vec::with_capacity(parts.len());
         for (part, (name, data)) in parts.iter().enumerate() {
@@ -257,6 +317,7 @@ impl Output {
         }
         // the frame enters the series only once all its parts are written
         self.pvd_entries.extend(entries);
+        self.frames.push((step, sim.time()));
         self.last_frame_step = Some(step);
         let frames = self.pvd_entries.len() / 4;
         if frames < PVD_REWRITE_PERIOD || frames % PVD_REWRITE_PERIOD == 0 {
@@ -290,6 +351,34 @@ impl Output {
             self.files.push(path);
         }
     }
+}
+
+/// The parts of a frame, in the order of their part numbers in the `.pvd`.
+const PARTS: [&str; 4] = ["particles", "connections", "pfacets", "contacts"];
+
+/// Checks `settings` against `sim`: output periods of at least one step, series to plot when
+/// a plot is asked for, valid series.
+fn check_settings(settings: &OutputSettings, sim: &Simulation) -> Result<(), OutputError> {
+    for (what, every) in
+        [("vtk_every", settings.vtk_every), ("series_every", settings.series_every)]
+    {
+        if every == Some(0) {
+            return Err(OutputError::Setting {
+                what: what.into(),
+                value: "0".into(),
+                expected: "a number of steps of at least 1 (or none)".into(),
+            });
+        }
+    }
+    if settings.plot && (settings.series_every.is_none() || settings.series.is_empty()) {
+        return Err(OutputError::Setting {
+            what: "plot".into(),
+            value: "true".into(),
+            expected: "series to plot: set series_every and at least one series".into(),
+        });
+    }
+    validate_series(&settings.series, sim)?;
+    Ok(())
 }
 
 /// The path of the `.pvd` file for `settings`.

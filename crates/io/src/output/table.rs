@@ -44,6 +44,61 @@ impl CsvSeries {
         })
     }
 
+    /// Continues the series at `path` written by an earlier run: checks that its header is
+    /// `columns`, keeps its first `rows` rows (dropping any later ones, written after a
+    /// checkpoint), and opens it for appending. Returns the kept rows' values.
+    pub fn resume(
+        path: &Path,
+        columns: &[String],
+        rows: usize,
+    ) -> Result<(CsvSeries, Vec<Vec<Real>>), OutputError> {
+        let problem = |problem: String| OutputError::Resume { path: path.to_path_buf(), problem };
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| problem(format!("cannot read the series: {e}")))?;
+        let mut lines = text.lines();
+        let header = columns.join(",");
+        if lines.next() != Some(header.as_str()) {
+            return Err(problem(format!("its header is not the expected `{header}`")));
+        }
+        let mut kept_text = format!("{header}\n");
+        let mut kept = Vec::with_capacity(rows);
+        for (i, line) in lines.take(rows).enumerate() {
+            let values = line
+                .split(',')
+                .map(|v| v.parse::<Real>())
+                .collect::<Result<Vec<Real>, _>>()
+                .map_err(|e| problem(format!("row {} is not numbers: {e}", i + 1)))?;
+            if values.len() != columns.len() {
+                return Err(problem(format!(
+                    "row {} has {} values for {} columns",
+                    i + 1,
+                    values.len(),
+                    columns.len()
+                )));
+            }
+            kept_text.push_str(line);
+            kept_text.push('\n');
+            kept.push(values);
+        }
+        if kept.len() < rows {
+            return Err(problem(format!(
+                "it has {} rows, the checkpoint expects at least {rows}",
+                kept.len()
+            )));
+        }
+        write_atomically(path, kept_text.as_bytes())?;
+        let file = OpenOptions::new()
+            .append(true)
+            .open(path)
+            .map_err(|source| OutputError::Write { path: path.to_path_buf(), source })?;
+        let csv = CsvSeries {
+            path: path.to_path_buf(),
+            columns: columns.len(),
+            file: BufWriter::new(file),
+        };
+        Ok((csv, kept))
+    }
+
     /// The file's path.
     pub fn path(&self) -> &Path {
         &self.path
