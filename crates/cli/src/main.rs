@@ -1,9 +1,36 @@
-//! The `flexdem` command (to come: `run`, `check`, `info`, `resume`).
+//! The `flexdem` command: run a scene file, check it, describe it, resume a run from a
+//! checkpoint.
+//!
+//! Exit codes: 0 success, 1 the run failed (an unstable run, an output file that cannot be
+//! written), 2 bad input (scene file, checkpoint, command-line arguments), 130 interrupted by
+//! Ctrl-C (a checkpoint was written).
+
+mod cli;
+mod commands;
+mod error;
+mod progress;
+mod report;
+mod summary;
+
+use clap::Parser;
+use cli::{Cli, Command};
+use error::Outcome;
 
 fn main() {
-    eprintln!(
-        "flexdem {}: the command line is not built yet; the engine is used as a Rust library for now.",
-        env!("CARGO_PKG_VERSION")
-    );
-    std::process::exit(2);
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Run(args) => commands::run::run(&args),
+        Command::Check(args) => commands::check::check(&args),
+        Command::Info(args) => commands::info::info(&args),
+        Command::Resume(args) => commands::resume::resume(&args),
+    };
+    let code = match result {
+        Ok(Outcome::Done) => 0,
+        Ok(Outcome::Interrupted) => 130,
+        Err(e) => {
+            eprintln!("error: {e}");
+            e.exit_code()
+        }
+    };
+    std::process::exit(code);
 }
