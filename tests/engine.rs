@@ -132,6 +132,11 @@ fn bad_settings_and_massless_bodies_are_refused() {
         let err = Simulation::new(model(), settings).err().expect("refused").to_string();
         assert!(err.contains(text), "{err}");
     }
+    let mut sim = Simulation::new(model(), Settings::default()).unwrap();
+    let ramp = flexdem::integrate::Ramp::Linear { start: 0.0, duration: Real::NAN };
+    let load = flexdem::integrate::Load { particles: vec![0], force: Vec3::x(), torque: Vec3::zeros(), ramp };
+    let err = sim.add_load(load).unwrap_err().to_string();
+    assert!(err.contains("load ramp"), "{err}");
     let mut m = model();
     m.particles.mass[0] = 0.0;
     let err = Simulation::new(m, Settings::default()).err().expect("refused").to_string();

@@ -71,12 +71,26 @@ pub struct Contacts {
     touching: Vec<ElementCandidate>,
     #[serde(skip)]
     loads: Vec<[NodeLoad; 6]>,
+    /// Buffers reused from step to step, so that detection does not allocate once warm.
+    #[serde(skip)]
+    scratch: Scratch,
     #[serde(skip)]
     connection_nodes: Vec<[u32; 2]>,
     #[serde(skip)]
     pfacet_nodes: Vec<[u32; 3]>,
     #[serde(skip)]
     pfacet_connections: Vec<[u32; 3]>,
+}
+
+/// Buffers of [`Contacts::detect`].
+#[derive(Clone, Debug, Default)]
+struct Scratch {
+    keys: Vec<(u32, u32)>,
+    survivors: Vec<Option<Touching>>,
+    all: Vec<Touching>,
+    previous: Vec<Contact>,
+    taken: Vec<bool>,
+    ended: Vec<usize>,
 }
 
 const SPHERE_OWNER: u64 = 0;
@@ -271,9 +285,11 @@ impl Contacts {
                 Element::PFacet(k) => collider.pfacet_element[k as usize],
             }
         };
-        let keys: Vec<(u32, u32)> =
-            touching.iter().map(|c| (index_of(c.element1), index_of(c.element2))).collect();
-        let survivors: Vec<Touching> = (0..touching.len())
+        let scratch = &mut self.scratch;
+        scratch.keys.clear();
+        scratch.keys.extend(touching.iter().map(|c| (index_of(c.element1), index_of(c.element2))));
+        let keys = &scratch.keys;
+        (0..touching.len())
             .into_par_iter()
             .map_init(
                 || (Vec::new(), Vec::new()),
@@ -298,11 +314,12 @@ impl Contacts {
                     })
                 },
             )
-            .flatten()
-            .collect();
+            .collect_into_vec(&mut scratch.survivors);
 
         // walls touch every particle on their side (one contact per wall and particle)
-        let mut all = survivors;
+        let all = &mut scratch.all;
+        all.clear();
+        all.extend(scratch.survivors.iter().flatten());
         for &(w, i) in &collider.wall_pairs {
             let wall = &model.walls[w as usize];
             let x = p.pos[i as usize];
@@ -326,8 +343,12 @@ impl Contacts {
         all.par_sort_unstable_by_key(|t| (t.candidate.site1.feature, t.candidate.site2.feature));
 
         // 3. match with the last step's contacts (both sorted by key)
-        let old = std::mem::take(&mut self.list);
-        let mut taken = vec![false; old.len()];
+        std::mem::swap(&mut self.list, &mut scratch.previous);
+        self.list.clear();
+        let old = &scratch.previous;
+        let taken = &mut scratch.taken;
+        taken.clear();
+        taken.resize(old.len(), false);
         let mut fresh = std::mem::take(&mut self.fresh);
         fresh.clear();
         let mut k = 0;
@@ -351,12 +372,16 @@ impl Contacts {
         // handover: a new contact takes the state of an ended one of the same owners, the
         // nearest within the contact's size (a touching that moved to the next feature);
         // the ended ones are sorted by owners, so each new contact looks only at its own
-        let mut ended: Vec<usize> = (0..old.len()).filter(|&o| !taken[o]).collect();
+        let ended = &mut scratch.ended;
+        ended.clear();
+        ended.extend((0..old.len()).filter(|&o| !taken[o]));
         ended.sort_unstable_by_key(|&o| (old[o].owners, o));
         for &n in &fresh {
             let c = &self.list[n];
             let reach = c.site1.radius + c.site2.radius;
-            let point = all[n].candidate.center1;
+            // both are contact points: the old one at its last update, the new one estimated
+            // by new_contact
+            let point = c.point;
             let start = ended.partition_point(|&o| old[o].owners < c.owners);
             let best = ended[start..]
                 .iter()

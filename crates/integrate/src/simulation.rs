@@ -4,7 +4,7 @@ use crate::collider::Collider;
 use crate::contacts::Contacts;
 use crate::integrator::{kinetic_energy, leapfrog_step, StepWork};
 use crate::links::Links;
-use crate::settings::{Load, Settings, TimeStep};
+use crate::settings::{Load, Ramp, Settings, TimeStep};
 use crate::time_step::{critical_step_from_stiffness, p_wave_time_step, StiffnessSums};
 use crate::timers::{Stage, Timers};
 use crate::SimulationError;
@@ -276,6 +276,15 @@ impl Simulation {
                 value: bad.to_string(),
                 expected: format!("a particle id below {n}"),
             });
+        }
+        if let Ramp::Linear { start, duration } = load.ramp {
+            if !(start.is_finite() && duration.is_finite() && duration >= 0.0) {
+                return Err(SimulationError::Setting {
+                    what: "load ramp".into(),
+                    value: format!("start {start}, duration {duration}"),
+                    expected: "a finite start time and a finite, non-negative duration (s)".into(),
+                });
+            }
         }
         if !load.force.iter().chain(load.torque.iter()).all(|x| x.is_finite()) {
             return Err(SimulationError::Setting {
