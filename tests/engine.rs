@@ -134,7 +134,12 @@ fn bad_settings_and_massless_bodies_are_refused() {
     }
     let mut sim = Simulation::new(model(), Settings::default()).unwrap();
     let ramp = flexdem::integrate::Ramp::Linear { start: 0.0, duration: Real::NAN };
-    let load = flexdem::integrate::Load { particles: vec![0], force: Vec3::x(), torque: Vec3::zeros(), ramp };
+    let load = flexdem::integrate::Load {
+        particles: vec![0],
+        force: Vec3::x(),
+        torque: Vec3::zeros(),
+        ramp,
+    };
     let err = sim.add_load(load).unwrap_err().to_string();
     assert!(err.contains("load ramp"), "{err}");
     let mut m = model();
