@@ -127,3 +127,13 @@ fn cantilever_first_frequency() {
     let f = 1.0 / period;
     assert!((f / expected - 1.0).abs() < 0.02, "f = {f} Hz vs {expected} Hz");
 }
+
+/// The P-wave step r/√(E/ρ_eff) of the YADE cantilever (ρ_eff from the lumped node mass):
+/// YADE 2023.02a's PWaveTimeStep gives 6.123724356957945e-5 s (set by the end nodes, which
+/// hold half an inner node's mass).
+#[test]
+fn p_wave_step_matches_yade() {
+    let (sim, _) = cantilever(10, L, R, E, NU, RHO, LinkKinematicsMode::Yade, 0.3);
+    let dt = flexdem::integrate::p_wave_time_step(&sim.model).unwrap();
+    assert!((dt / 6.123724356957945e-5 - 1.0).abs() < 1e-12, "{dt}");
+}

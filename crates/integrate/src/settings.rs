@@ -128,3 +128,20 @@ pub struct Load {
     /// Growth in time.
     pub ramp: Ramp,
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ramps_grow_linearly_then_hold() {
+        let r = Ramp::Linear { start: 1.0, duration: 2.0 };
+        assert_eq!(r.factor(0.5), 0.0);
+        assert_eq!(r.factor(1.0), 0.0);
+        assert!((r.factor(2.0) - 0.5).abs() < 1e-15);
+        assert_eq!(r.factor(3.0), 1.0);
+        assert_eq!(r.factor(10.0), 1.0);
+        assert_eq!(Ramp::Linear { start: 0.0, duration: 0.0 }.factor(1e-9), 1.0);
+        assert_eq!(Ramp::Constant.factor(0.0), 1.0);
+    }
+}
