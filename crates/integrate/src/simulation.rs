@@ -148,34 +148,23 @@ impl Simulation {
         model.validate()?;
         check_masses(&model)?;
         let links = Links::from_model(&model, settings.link_mode);
-        let n = model.particles.len();
-        let contacts = Contacts::new(&model);
-        let collider = Collider::new(&model, settings.verlet_factor);
-        let adjacency = model.adjacency();
-        let mut sim = Simulation {
+        let mut sim = Simulation::assemble(Snapshot {
             model,
             settings,
             links,
-            contacts,
-            collider,
+            contacts: Vec::new(),
+            ended_dissipation: 0.0,
             loads: Vec::new(),
-            adjacency,
-            dt_updated_at: 0,
-            stiffness: StiffnessSums::default(),
-            force_hook: None,
-            force: vec![Vec3::zeros(); n],
-            torque: vec![Vec3::zeros(); n],
-            external_force: vec![Vec3::zeros(); n],
-            external_torque: vec![Vec3::zeros(); n],
             time: 0.0,
             steps: 0,
             dt: 0.0,
             critical_dt: 0.0,
+            dt_updated_at: 0,
+            stiffness: StiffnessSums::default(),
             energy: Energy::default(),
             pending_work: (0.0, 0.0),
-            timers: Timers::default(),
             warnings: Vec::new(),
-        };
+        });
         sim.update_time_step()?;
         let (kt, kr) = kinetic_energy(&sim.model.particles);
         sim.energy.kinetic_translation = kt;
@@ -234,14 +223,21 @@ impl Simulation {
                 expected: "a snapshot written by Simulation::snapshot".into(),
             });
         }
+        Ok(Simulation::assemble(s))
+    }
+
+    /// A simulation of the state `s` with fresh buffers (no checks: see `new` and
+    /// `from_snapshot`).
+    fn assemble(s: Snapshot) -> Self {
+        let n = s.model.particles.len();
         let mut links = s.links;
-        links.forces = vec![Default::default(); n_links];
+        links.forces = vec![Default::default(); links.len()];
         let mut contacts = Contacts::new(&s.model);
         contacts.list = s.contacts;
         contacts.ended_dissipation = s.ended_dissipation;
         let collider = Collider::new(&s.model, s.settings.verlet_factor);
         let adjacency = s.model.adjacency();
-        Ok(Simulation {
+        Simulation {
             model: s.model,
             settings: s.settings,
             links,
@@ -264,7 +260,7 @@ impl Simulation {
             pending_work: s.pending_work,
             timers: Timers::default(),
             warnings: s.warnings,
-        })
+        }
     }
 
     /// Adds an imposed load, checking its particle ids and values.
