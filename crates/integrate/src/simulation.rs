@@ -536,20 +536,25 @@ impl Simulation {
     /// velocities around t, elastic from the forces computed at t, works up to t.
     fn account_energy(&mut self, work: &StepWork, dt: Real) {
         let p = &self.model.particles;
-        // work of imposed forces over the step: F·v(t + dt/2)·dt, on free DOFs
-        let load_work: Real = self
-            .external_force
-            .iter()
-            .zip(&p.vel)
-            .zip(&p.blocked)
-            .map(|((f, v), b)| {
-                (0..3)
-                    .filter(|&k| !b.contains(Dofs::translation(k)))
-                    .map(|k| f[k] * v[k])
-                    .sum::<Real>()
-            })
-            .sum::<Real>()
-            * dt;
+        // work of imposed forces over the step: F·v(t + dt/2)·dt, on free DOFs (nothing to
+        // sum over every particle when nothing is imposed)
+        let loaded = !self.loads.is_empty() || self.force_hook.is_some();
+        let load_work: Real = if !loaded {
+            0.0
+        } else {
+            self.external_force
+                .iter()
+                .zip(&p.vel)
+                .zip(&p.blocked)
+                .map(|((f, v), b)| {
+                    (0..3)
+                        .filter(|&k| !b.contains(Dofs::translation(k)))
+                        .map(|k| f[k] * v[k])
+                        .sum::<Real>()
+                })
+                .sum::<Real>()
+                * dt
+        };
         let e = &mut self.energy;
         e.kinetic_translation = work.kinetic_translation;
         e.kinetic_rotation = work.kinetic_rotation;
