@@ -5,6 +5,7 @@
 //! node loads summed in contact order (independent of the thread count).
 
 use crate::collider::{Collider, NONE};
+use crate::prefilter::{hull, proven_apart};
 use flexdem_contact::{
     update_frictional_contact, ContactForces, ContactKinematics, FrictionalContact,
     FrictionalParams,
@@ -167,27 +168,6 @@ fn candidate(model: &Model, a: Element, b: Element) -> Candidate {
     }
 }
 
-/// A sphere containing an element in its current configuration (its skeleton grown by the
-/// radius): centre and radius.
-fn bounding_sphere(model: &Model, e: Element) -> (Vec3, Real) {
-    let p = &model.particles.pos;
-    match e {
-        Element::Particle(i) => (p[i as usize], model.particles.radius[i as usize]),
-        Element::Connection(k) => {
-            let c = &model.connections[k as usize];
-            let (a, b) = (p[c.nodes[0] as usize], p[c.nodes[1] as usize]);
-            ((a + b) * 0.5, 0.5 * (b - a).norm() + c.radius)
-        }
-        Element::PFacet(k) => {
-            let f = &model.pfacets[k as usize];
-            let [a, b, d] = f.nodes.map(|n| p[n as usize]);
-            let c = (a + b + d) / 3.0;
-            let r2 = (a - c).norm_squared().max((b - c).norm_squared()).max((d - c).norm_squared());
-            (c, r2.sqrt() + f.radius)
-        }
-    }
-}
-
 /// Collidable indices of the elements that contain `feature`.
 fn containing(collider: &Collider, adj: &Adjacency, feature: Feature, out: &mut Vec<u32>) {
     out.clear();
@@ -254,10 +234,9 @@ impl Contacts {
             .map(|&(i, j)| {
                 let (a, b) = (elements[i as usize], elements[j as usize]);
                 // the exact kernels cost up to a microsecond (triangle–triangle): most
-                // candidate pairs of the Verlet list do not touch, and their bounding spheres
-                // already say so
-                let ((ca, ra), (cb, rb)) = (bounding_sphere(model, a), bounding_sphere(model, b));
-                if (ca - cb).norm_squared() > (ra + rb) * (ra + rb) {
+                // candidate pairs of the Verlet list do not touch, and a separating slab
+                // already says so
+                if proven_apart(&hull(model, a), &hull(model, b)) {
                     return None;
                 }
                 let c = candidate(model, a, b);

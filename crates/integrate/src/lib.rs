@@ -7,6 +7,7 @@ mod contacts;
 mod error;
 mod integrator;
 mod links;
+mod prefilter;
 mod settings;
 mod simulation;
 mod time_step;
