@@ -101,6 +101,10 @@ pub struct Counts {
     pub structures: usize,
     /// Contacts at the end.
     pub contacts: usize,
+    /// Candidate pairs of the collider's last build.
+    pub candidate_pairs: usize,
+    /// Collider builds (broad phase runs) since the simulation started.
+    pub collider_builds: u64,
 }
 
 /// The energy terms (J) and the balance.
@@ -158,6 +162,8 @@ impl Counts {
             walls: m.walls.len(),
             structures: m.structures.len(),
             contacts: sim.contacts.list.len(),
+            candidate_pairs: sim.collider.pairs.len(),
+            collider_builds: sim.collider.builds,
         }
     }
 }

@@ -34,7 +34,8 @@ pub struct Settings {
     pub damping: Real,
     /// Shear kinematics of beam links.
     pub link_mode: LinkKinematicsMode,
-    /// Verlet distance of the broad phase, as a fraction of the smallest radius.
+    /// Verlet distance of the broad phase, as a fraction of each element's size (see
+    /// [`crate::Collider`]).
     pub verlet_factor: Real,
     /// Recompute the automatic time step every this many steps (and when contacts appear).
     pub time_step_interval: u64,

@@ -190,7 +190,7 @@ impl Builder<'_> {
         }
         if let Some(v) = &sim.verlet_factor {
             settings.verlet_factor =
-                ctx.positive(v, &key("verlet_factor"), "fraction of the smallest radius")?;
+                ctx.positive(v, &key("verlet_factor"), "fraction of each element's size")?;
         }
         if let Some(n) = &sim.time_step_interval {
             settings.time_step_interval = ctx.count(n, &key("time_step_interval"), 1)? as u64;
