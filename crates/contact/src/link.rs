@@ -270,7 +270,11 @@ fn cohesive_step(p: &LinkParams, s: &mut LinkState, kin: &LinkKinematics, t: &Tr
         let r1 = kin.q1 * s.q1_ref.inverse();
         let r2 = kin.q2 * s.q2_ref.inverse();
         let theta = rotation_vector(&(r2 * r1.inverse()));
-        let el = theta - r1 * s.plastic_rotation;
+        let el = if s.plastic_rotation == Vec3::zeros() {
+            theta
+        } else {
+            theta - r1 * s.plastic_rotation
+        };
         let tw = n * n.dot(&el);
         (tw * -k.kt, (el - tw) * -k.kb, theta, r1)
     } else {
@@ -334,11 +338,15 @@ fn cohesive_step(p: &LinkParams, s: &mut LinkState, kin: &LinkKinematics, t: &Tr
     }
     s.shear_force = fs;
     s.dissipated += diss;
-    let fs_mag = fs.norm();
-    let elastic = spring_energy(fn_, k.kn)
-        + spring_energy(fs_mag, t.ks)
-        + spring_energy(mt.norm(), k.kt)
-        + spring_energy(mb.norm(), k.kb);
+    let capped = fn_ != t.fn_ || shear_cap.is_some() || twist_cap.is_some() || bend_cap.is_some();
+    let elastic = if capped {
+        spring_energy(fn_, k.kn)
+            + spring_energy(fs.norm(), t.ks)
+            + spring_energy(mt.norm(), k.kt)
+            + spring_energy(mb.norm(), k.kb)
+    } else {
+        e_trial
+    };
     assemble(n, t.l, fn_, fs, mt, mb, elastic, diss, LinkEvent::None)
 }
 

@@ -28,7 +28,7 @@ use rayon::prelude::*;
 /// Size of an element: the radius of a sphere holding it in its current configuration.
 fn element_size(model: &Model, e: Element) -> Real {
     let h = hull(model, e);
-    let c = h.centroid();
+    let c = h.centroid;
     let reach = h.skeleton().iter().map(|x| (x - c).norm()).fold(0.0, Real::max);
     reach + h.radius
 }

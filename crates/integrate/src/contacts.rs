@@ -5,7 +5,7 @@
 //! node loads summed in contact order (independent of the thread count).
 
 use crate::collider::{Collider, NONE};
-use crate::prefilter::{hull, proven_apart};
+use crate::prefilter::{hull, proven_apart, Hull};
 use flexdem_contact::{
     update_frictional_contact, ContactForces, ContactKinematics, FrictionalContact,
     FrictionalParams,
@@ -86,6 +86,9 @@ pub struct Contacts {
 /// Buffers of [`Contacts::detect`].
 #[derive(Clone, Debug, Default)]
 struct Scratch {
+    hulls: Vec<Hull>,
+    maybe: Vec<bool>,
+    near: Vec<(u32, u32)>,
     keys: Vec<(u32, u32)>,
     survivors: Vec<Option<Touching>>,
     all: Vec<Touching>,
@@ -225,20 +228,26 @@ impl Contacts {
     /// their state, or handing it over to the feature a touching moved to).
     pub fn detect(&mut self, model: &Model, adj: &Adjacency, collider: &Collider) {
         let p = &model.particles;
-        // 1. exact closest features of every candidate pair; keep the touching ones
+        // 1. exact closest features of every candidate pair; keep the touching ones. The
+        // exact kernels cost up to a microsecond (triangle–triangle) and most candidate pairs
+        // of the Verlet list do not touch: a separating slab between the elements' hulls
+        // (taken once per element) says so first, and only the remaining pairs go on.
         let elements = &collider.elements;
-        self.candidates.clear();
+        elements.par_iter().map(|&e| hull(model, e)).collect_into_vec(&mut self.scratch.hulls);
+        let hulls = &self.scratch.hulls;
         collider
             .pairs
             .par_iter()
+            .map(|&(i, j)| !proven_apart(&hulls[i as usize], &hulls[j as usize]))
+            .collect_into_vec(&mut self.scratch.maybe);
+        let near = &mut self.scratch.near;
+        near.clear();
+        near.extend(
+            collider.pairs.iter().zip(&self.scratch.maybe).filter(|(_, &m)| m).map(|(&p, _)| p),
+        );
+        near.par_iter()
             .map(|&(i, j)| {
                 let (a, b) = (elements[i as usize], elements[j as usize]);
-                // the exact kernels cost up to a microsecond (triangle–triangle): most
-                // candidate pairs of the Verlet list do not touch, and a separating slab
-                // already says so
-                if proven_apart(&hull(model, a), &hull(model, b)) {
-                    return None;
-                }
                 let c = candidate(model, a, b);
                 (c.overlap() > 0.0).then_some(ElementCandidate {
                     element1: a,

@@ -23,6 +23,8 @@ pub struct Hull {
     pub count: usize,
     /// Radius the skeleton is grown by.
     pub radius: Real,
+    /// Mean of the skeleton points.
+    pub centroid: Vec3,
 }
 
 impl Hull {
@@ -31,9 +33,10 @@ impl Hull {
         &self.points[..self.count]
     }
 
-    /// Mean of the skeleton points.
-    pub fn centroid(&self) -> Vec3 {
-        self.skeleton().iter().sum::<Vec3>() / self.count as Real
+    /// The hull of the first `count` of `points` grown by `radius`.
+    pub fn new(points: [Vec3; 3], count: usize, radius: Real) -> Hull {
+        let centroid = points[..count].iter().sum::<Vec3>() / count as Real;
+        Hull { points, count, radius, centroid }
     }
 }
 
@@ -41,19 +44,17 @@ impl Hull {
 pub fn hull(model: &Model, e: Element) -> Hull {
     let p = &model.particles.pos;
     match e {
-        Element::Particle(i) => Hull {
-            points: [p[i as usize]; 3],
-            count: 1,
-            radius: model.particles.radius[i as usize],
-        },
+        Element::Particle(i) => {
+            Hull::new([p[i as usize]; 3], 1, model.particles.radius[i as usize])
+        }
         Element::Connection(k) => {
             let c = &model.connections[k as usize];
             let (a, b) = (p[c.nodes[0] as usize], p[c.nodes[1] as usize]);
-            Hull { points: [a, b, b], count: 2, radius: c.radius }
+            Hull::new([a, b, b], 2, c.radius)
         }
         Element::PFacet(k) => {
             let f = &model.pfacets[k as usize];
-            Hull { points: f.nodes.map(|n| p[n as usize]), count: 3, radius: f.radius }
+            Hull::new(f.nodes.map(|n| p[n as usize]), 3, f.radius)
         }
     }
 }
@@ -75,7 +76,7 @@ pub fn separated_along(a: &Hull, b: &Hull, axis: &Vec3) -> bool {
 /// Whether `a` and `b` are proven apart, by the axis joining their centroids, then (for
 /// PFacets) by their face normals (from either side).
 pub fn proven_apart(a: &Hull, b: &Hull) -> bool {
-    let axis = b.centroid() - a.centroid();
+    let axis = b.centroid - a.centroid;
     if separated_along(a, b, &axis) {
         return true;
     }
@@ -98,7 +99,7 @@ mod tests {
     use proptest::prelude::*;
 
     fn tri(points: [Vec3; 3], radius: Real) -> Hull {
-        Hull { points, count: 3, radius }
+        Hull::new(points, 3, radius)
     }
 
     #[test]
@@ -157,7 +158,7 @@ mod tests {
             ra in 0.0..0.5f64,
             rb in 0.0..0.5f64,
         ) {
-            let s = Hull { points: [a[0], a[1], a[1]], count: 2, radius: ra };
+            let s = Hull::new([a[0], a[1], a[1]], 2, ra);
             let cp = flexdem_geom::closest_points_segment_triangle(&a[0], &a[1], &b[0], &b[1], &b[2]);
             let distance = (cp.point_triangle - cp.point_segment).norm();
             if distance <= ra + rb {
