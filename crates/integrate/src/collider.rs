@@ -58,6 +58,9 @@ pub struct Collider {
     limits: Vec<Real>,
     /// How far a wall may move before a rebuild: the smallest particle limit.
     wall_limit: Real,
+    /// How far each particle may move in one step before the run is called unstable: its
+    /// radius, or the size of the smallest element holding it if larger.
+    pub(crate) reach: Vec<Real>,
     /// Particle positions at the last build.
     reference: Vec<Vec3>,
     /// Wall points at the last build.
@@ -104,16 +107,34 @@ impl Collider {
         c.margins =
             c.elements.iter().map(|&e| 0.5 * verlet_factor * element_size(model, e)).collect();
         c.limits = vec![Real::INFINITY; p.len()];
+        let mut smallest = vec![Real::INFINITY; p.len()];
         for (&e, &m) in c.elements.iter().zip(&c.margins) {
             let held: &[u32] = match e {
                 Element::Particle(i) => &[i],
                 _ => Self::nodes(model, e),
             };
+            let size = element_size(model, e);
             for &n in held {
-                let limit = &mut c.limits[n as usize];
-                *limit = limit.min(m);
+                let n = n as usize;
+                c.limits[n] = c.limits[n].min(m);
+                smallest[n] = smallest[n].min(size);
             }
         }
+        // elements of structures whose connections are not collidable (a chain of PFacets is
+        // always held by its PFacets; a chain of links alone by its connections)
+        for conn in &model.connections {
+            let size = 0.5 * (p.pos[conn.nodes[0] as usize] - p.pos[conn.nodes[1] as usize]).norm()
+                + conn.radius;
+            for &n in &conn.nodes {
+                smallest[n as usize] = smallest[n as usize].min(size);
+            }
+        }
+        c.reach = p
+            .radius
+            .iter()
+            .zip(&smallest)
+            .map(|(&r, &s)| if s.is_finite() { r.max(s) } else { r })
+            .collect();
         // a node in no collidable element is watched on its own radius (for walls)
         for (limit, &r) in c.limits.iter_mut().zip(&p.radius) {
             if *limit == Real::INFINITY {

@@ -36,20 +36,21 @@ pub enum SimulationError {
     /// Nothing gives a time step: no stiffness and no massive particle.
     #[error("no time step can be estimated (no links, contacts or massive particles): set dt")]
     NoTimeStep,
-    /// A particle moved by more than its radius in one step: the run is unstable.
+    /// A particle moved by more than its reach in one step (its radius, or for a node the size
+    /// of the smallest element holding it, if larger): the run is unstable.
     #[error(
         "particle {particle} moved by {displacement:.3e} m in one step at step {step} \
-         (t = {time:.6e} s), more than its radius {radius:.3e} m: the run is unstable \
-         (dt = {dt:.3e} s, critical step {critical_dt:.3e} s); use a smaller dt or dt = auto \
-         with a smaller safety factor"
+         (t = {time:.6e} s), more than its reach {reach:.3e} m (its radius, or the size of its \
+         smallest element): the run is unstable (dt = {dt:.3e} s, critical step \
+         {critical_dt:.3e} s); use a smaller dt or dt = auto with a smaller safety factor"
     )]
     Exploding {
         /// The fastest such particle.
         particle: u32,
         /// Its displacement in the step.
         displacement: Real,
-        /// Its radius.
-        radius: Real,
+        /// The most it may move in one step.
+        reach: Real,
         /// The step.
         step: u64,
         /// The time.

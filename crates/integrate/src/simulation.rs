@@ -568,14 +568,18 @@ impl Simulation {
         e.damping += work.damping;
     }
 
-    /// Stops on NaN or infinity, and on a particle that moved by more than its radius in one
-    /// step (the sign of an unstable run, long before NaN appears), naming the particle.
+    /// Stops on NaN or infinity, and on a particle that moved by more than its reach in one
+    /// step (the sign of an unstable run, long before NaN appears), naming the particle. The
+    /// reach is the particle's radius, or for a node the size of the smallest element holding
+    /// it when that is larger: a thin cable or membrane (radius of microns, elements of
+    /// centimetres) legitimately moves by more than its radius per step.
     fn check_finite(&self) -> Result<(), SimulationError> {
         let p = &self.model.particles;
         let dt = self.dt;
+        let reach = &self.collider.reach;
         let jump = (0..p.len())
             .into_par_iter()
-            .map(|i| (p.vel[i].norm() * dt / p.radius[i], i))
+            .map(|i| (p.vel[i].norm() * dt / reach[i], i))
             .filter(|(ratio, _)| *ratio > 1.0)
             .max_by(|a, b| a.0.total_cmp(&b.0).then(b.1.cmp(&a.1)));
         let bad = (0..p.len()).into_par_iter().find_first(|&i| {
@@ -597,7 +601,7 @@ impl Simulation {
                 Some((_, i)) => Err(SimulationError::Exploding {
                     particle: i as u32,
                     displacement: p.vel[i].norm() * dt,
-                    radius: p.radius[i],
+                    reach: self.collider.reach[i],
                     step: self.steps,
                     time: self.time,
                     dt,
