@@ -25,6 +25,8 @@ pub struct Hull {
     pub radius: Real,
     /// Mean of the skeleton points.
     pub centroid: Vec3,
+    /// Unit normal of a PFacet's plane (zero for the other elements or a degenerate one).
+    pub normal: Vec3,
 }
 
 impl Hull {
@@ -36,7 +38,13 @@ impl Hull {
     /// The hull of the first `count` of `points` grown by `radius`.
     pub fn new(points: [Vec3; 3], count: usize, radius: Real) -> Hull {
         let centroid = points[..count].iter().sum::<Vec3>() / count as Real;
-        Hull { points, count, radius, centroid }
+        let normal = if count == 3 {
+            let [p, q, r] = points;
+            (q - p).cross(&(r - p)).try_normalize(0.0).unwrap_or_else(Vec3::zeros)
+        } else {
+            Vec3::zeros()
+        };
+        Hull { points, count, radius, centroid, normal }
     }
 }
 
@@ -74,17 +82,24 @@ pub fn separated_along(a: &Hull, b: &Hull, axis: &Vec3) -> bool {
 }
 
 /// Whether `a` and `b` are proven apart, by the axis joining their centroids, then (for
-/// PFacets) by their face normals (from either side).
+/// PFacets) by their face normals, on either side: with n the unit normal of a PFacet h and o
+/// the other body, apart when min_o(x·n) − h₀·n > r_a + r_b or h₀·n − max_o(x·n) > r_a + r_b.
 pub fn proven_apart(a: &Hull, b: &Hull) -> bool {
     let axis = b.centroid - a.centroid;
     if separated_along(a, b, &axis) {
         return true;
     }
-    for (hull, sign) in [(a, 1.0), (b, -1.0)] {
-        if hull.count == 3 {
-            let [p, q, r] = hull.points;
-            let normal = (q - p).cross(&(r - p)) * sign;
-            if separated_along(a, b, &normal) || separated_along(a, b, &-normal) {
+    let reach = a.radius + b.radius;
+    for (h, other) in [(a, b), (b, a)] {
+        if h.count == 3 && h.normal != Vec3::zeros() {
+            let n = &h.normal;
+            let plane = h.points[0].dot(n);
+            let (lo, hi) = other
+                .skeleton()
+                .iter()
+                .map(|x| x.dot(n))
+                .fold((Real::INFINITY, Real::NEG_INFINITY), |(lo, hi), d| (lo.min(d), hi.max(d)));
+            if lo - plane > reach || plane - hi > reach {
                 return true;
             }
         }
