@@ -18,7 +18,7 @@ pub use collider::Collider;
 pub use contacts::{Contact, Contacts};
 pub use error::SimulationError;
 pub use integrator::{kinetic_energy, leapfrog_step, StepWork};
-pub use links::{LinkEvents, Links};
+pub use links::{LinkEvents, LinkUpdate, Links};
 pub use settings::{Load, Ramp, Settings, TimeStep};
 pub use simulation::{Control, Energy, ForceHook, Simulation, Snapshot};
 pub use time_step::{critical_step_from_stiffness, p_wave_time_step, StiffnessSums};

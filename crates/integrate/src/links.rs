@@ -11,6 +11,17 @@ use flexdem_geom::{Real, Vec3};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
+/// What one update of every link returns.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct LinkUpdate {
+    /// Breakage events.
+    pub events: LinkEvents,
+    /// Elastic energy stored in the links after the update (J).
+    pub elastic_energy: Real,
+    /// Energy the links have dissipated since they were made (J).
+    pub dissipated: Real,
+}
+
 /// Links per parallel chunk.
 const CHUNK: usize = 512;
 
@@ -30,6 +41,9 @@ pub struct Links {
     node_offsets: Vec<u32>,
     /// For each node, the loads it receives: `2·link + side`.
     node_loads: Vec<u32>,
+    /// Per-chunk sums of the last update (a buffer kept between steps).
+    #[serde(skip)]
+    chunk_sums: Vec<LinkUpdate>,
 }
 
 /// Events of one links update.
@@ -53,6 +67,7 @@ impl Links {
             forces: Vec::new(),
             node_offsets: Vec::new(),
             node_loads: Vec::new(),
+            chunk_sums: Vec::new(),
         };
         for c in &model.connections {
             let [a, b] = c.nodes.map(|n| n as usize);
@@ -104,12 +119,13 @@ impl Links {
     }
 
     /// Updates every link from the particles' state (in parallel) and returns the step's
-    /// breakage events.
-    pub fn update(&mut self, p: &Particles, dt: Real) -> LinkEvents {
+    /// breakage events and energy sums (summed per chunk of links, then over the chunks in
+    /// order: independent of the thread count).
+    pub fn update(&mut self, p: &Particles, dt: Real) -> LinkUpdate {
         if self.forces.len() != self.nodes.len() {
             self.forces = vec![LinkForces::default(); self.nodes.len()];
         }
-        let events: Vec<LinkEvents> = (
+        (
             self.nodes.par_chunks(CHUNK),
             self.params.par_chunks(CHUNK),
             self.state.par_chunks_mut(CHUNK),
@@ -117,7 +133,7 @@ impl Links {
         )
             .into_par_iter()
             .map(|(nodes, params, state, forces)| {
-                let mut ev = LinkEvents::default();
+                let mut sums = LinkUpdate::default();
                 for k in 0..nodes.len() {
                     let [a, b] = nodes[k].map(|n| n as usize);
                     let kin = LinkKinematics {
@@ -132,18 +148,24 @@ impl Links {
                     };
                     let f = update_link(&params[k], &mut state[k], &kin, dt);
                     match f.event {
-                        LinkEvent::BrokeInTension | LinkEvent::Separated => ev.broken += 1,
-                        LinkEvent::LostCohesion => ev.decohered += 1,
+                        LinkEvent::BrokeInTension | LinkEvent::Separated => sums.events.broken += 1,
+                        LinkEvent::LostCohesion => sums.events.decohered += 1,
                         LinkEvent::None => {}
                     }
+                    sums.elastic_energy += f.elastic_energy;
+                    sums.dissipated += state[k].dissipated.total();
                     forces[k] = f;
                 }
-                ev
+                sums
             })
-            .collect();
-        events.iter().fold(LinkEvents::default(), |a, e| LinkEvents {
-            broken: a.broken + e.broken,
-            decohered: a.decohered + e.decohered,
+            .collect_into_vec(&mut self.chunk_sums);
+        self.chunk_sums.iter().fold(LinkUpdate::default(), |a, c| LinkUpdate {
+            events: LinkEvents {
+                broken: a.events.broken + c.events.broken,
+                decohered: a.events.decohered + c.events.decohered,
+            },
+            elastic_energy: a.elastic_energy + c.elastic_energy,
+            dissipated: a.dissipated + c.dissipated,
         })
     }
 

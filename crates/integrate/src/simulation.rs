@@ -3,7 +3,7 @@
 use crate::collider::Collider;
 use crate::contacts::Contacts;
 use crate::integrator::{kinetic_energy, leapfrog_step, StepWork};
-use crate::links::Links;
+use crate::links::{LinkUpdate, Links};
 use crate::settings::{Load, Ramp, Settings, TimeStep};
 use crate::time_step::{critical_step_from_stiffness, p_wave_time_step, StiffnessSums};
 use crate::timers::{Stage, Timers};
@@ -404,12 +404,15 @@ impl Simulation {
         self.timers.stop(Stage::Contacts, t0);
 
         let t0 = self.timers.start();
-        self.links.update(&self.model.particles, dt);
+        let link_sums = self.links.update(&self.model.particles, dt);
         self.links.add_loads(&mut self.force, &mut self.torque);
         self.timers.stop(Stage::Links, t0);
 
-        // imposed loads and the user's hook
-        self.external_force.iter_mut().for_each(|f| *f = Vec3::zeros());
+        // imposed loads and the user's hook (nothing to sum over every particle without them)
+        let loaded = !self.loads.is_empty() || self.force_hook.is_some();
+        if loaded {
+            self.external_force.iter_mut().for_each(|f| *f = Vec3::zeros());
+        }
         for load in &self.loads {
             let s = load.ramp.factor(self.time);
             for &i in &load.particles {
@@ -429,8 +432,10 @@ impl Simulation {
                 *t += e;
             }
         }
-        for (f, e) in self.force.iter_mut().zip(&self.external_force) {
-            *f += e;
+        if loaded {
+            for (f, e) in self.force.iter_mut().zip(&self.external_force) {
+                *f += e;
+            }
         }
 
         let t0 = self.timers.start();
@@ -451,7 +456,7 @@ impl Simulation {
         self.steps += 1;
 
         self.check_finite()?;
-        self.account_energy(&work, dt);
+        self.account_energy(&work, &link_sums, dt);
         if let TimeStep::Auto { .. } = self.settings.time_step {
             let since = self.steps - self.dt_updated_at;
             if since >= self.settings.time_step_interval || (appeared && since >= 10) {
@@ -534,7 +539,7 @@ impl Simulation {
 
     /// Energy at time t (the start of the step just done): kinetic from the half-step
     /// velocities around t, elastic from the forces computed at t, works up to t.
-    fn account_energy(&mut self, work: &StepWork, dt: Real) {
+    fn account_energy(&mut self, work: &StepWork, links: &LinkUpdate, dt: Real) {
         let p = &self.model.particles;
         // work of imposed forces over the step: F·v(t + dt/2)·dt, on free DOFs (nothing to
         // sum over every particle when nothing is imposed)
@@ -558,10 +563,10 @@ impl Simulation {
         let e = &mut self.energy;
         e.kinetic_translation = work.kinetic_translation;
         e.kinetic_rotation = work.kinetic_rotation;
-        e.elastic_links = self.links.elastic_energy();
+        e.elastic_links = links.elastic_energy;
         e.elastic_contacts = self.contacts.elastic_energy();
         e.friction = self.contacts.dissipated();
-        e.links_dissipated = self.links.dissipated();
+        e.links_dissipated = links.dissipated;
         e.gravity_work += self.pending_work.0;
         e.load_work += self.pending_work.1;
         self.pending_work = (work.gravity, load_work);
