@@ -53,6 +53,8 @@ pub struct Summary {
     pub stages: Stages,
     /// Bodies and contacts at the end.
     pub counts: Counts,
+    /// The broad phase's work.
+    pub collider: ColliderSummary,
     /// Energy terms at the end and the balance.
     pub energy: EnergySummary,
     /// Final value of each tracked series quantity: series name → CSV column → value.
@@ -101,10 +103,16 @@ pub struct Counts {
     pub structures: usize,
     /// Contacts at the end.
     pub contacts: usize,
-    /// Candidate pairs of the collider's last build.
+}
+
+/// The broad phase's work (not part of the state: a resumed run rebuilds its candidate pairs
+/// at the resume, so these differ from an uninterrupted run's).
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct ColliderSummary {
+    /// Candidate pairs of the last build.
     pub candidate_pairs: usize,
-    /// Collider builds (broad phase runs) since the simulation started.
-    pub collider_builds: u64,
+    /// Builds (broad phase runs) since the simulation started or was resumed.
+    pub builds: u64,
 }
 
 /// The energy terms (J) and the balance.
@@ -162,8 +170,6 @@ impl Counts {
             walls: m.walls.len(),
             structures: m.structures.len(),
             contacts: sim.contacts.list.len(),
-            candidate_pairs: sim.collider.pairs.len(),
-            collider_builds: sim.collider.builds,
         }
     }
 }

@@ -135,7 +135,7 @@ fn info_prints_counts_masses_and_time_step() {
         "tube: E = 1.000e6 Pa",
         "critical dt: ",
         "dt used: ",
-        "run length: 0.15 s of simulated time = about ",
+        "run length: 0.28 s of simulated time = about ",
     ] {
         assert!(text.contains(expected), "missing `{expected}` in\n{text}");
     }
@@ -286,9 +286,9 @@ fn a_run_resumed_from_a_periodic_checkpoint_ends_as_an_uninterrupted_one() {
         assert!(out.status.success(), "{}", stderr(&out));
         read_json(&summary)
     };
-    let uninterrupted = run(&whole, "20", &[]);
-    // 10 steps with a checkpoint at step 10, then 10 more from it
-    let first = run(&parts, "10", &["--checkpoint-every", "10"]);
+    let uninterrupted = run(&whole, "40", &[]);
+    // 20 steps with a checkpoint at step 20, then 20 more from it
+    let first = run(&parts, "20", &["--checkpoint-every", "20"]);
     let checkpoint = parts.join("checkpoint.flexdem");
     assert_eq!(at(&first, "/checkpoint").as_str(), checkpoint.to_str());
 
@@ -301,16 +301,16 @@ fn a_run_resumed_from_a_periodic_checkpoint_ends_as_an_uninterrupted_one() {
         "resume".as_ref(),
         checkpoint.as_os_str(),
         "--steps".as_ref(),
-        "10".as_ref(),
+        "20".as_ref(),
         "--summary".as_ref(),
         summary.as_os_str(),
     ]);
     assert!(out.status.success(), "{}", stderr(&out));
     let resumed = read_json(&summary);
-    assert_eq!(at(&resumed, "/steps_this_run"), 10);
+    assert_eq!(at(&resumed, "/steps_this_run"), 20);
     assert_eq!(state(&resumed), state(&uninterrupted));
     assert!(at(&resumed, "/counts/contacts").as_u64().unwrap() > 0, "the impact has begun");
-    for file in ["series.csv", "flexdem.pvd", "particles_000020.vtp", "contacts_000020.vtp"] {
+    for file in ["series.csv", "flexdem.pvd", "particles_000040.vtp", "contacts_000040.vtp"] {
         let a = std::fs::read(whole.join(file)).unwrap();
         let b = std::fs::read(parts.join(file)).unwrap();
         assert!(a == b, "{file} differs between the uninterrupted and the resumed run");
