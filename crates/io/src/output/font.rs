@@ -1,5 +1,6 @@
 //! A built-in 5×7 pixel font for the plot's labels, so that plots need no font file and no
-//! font library (plotters' text drawing needs one).
+//! font library (plotters' text drawing needs one). Public so that other plotting code of
+//! the workspace (the validation report) draws its labels the same way.
 
 /// Glyphs of ASCII 32 (space) to 126 (`~`): five columns each, left to right; bit `r` of a
 /// column is row `r` from the top (rows 0 to 6).
@@ -102,18 +103,18 @@ const GLYPHS: [[u8; 5]; 95] = [
 ];
 
 /// Horizontal advance of one character at scale 1 (5 columns and a 1-pixel gap).
-pub(crate) const ADVANCE: i32 = 6;
+pub const ADVANCE: i32 = 6;
 /// Height of a character at scale 1.
-pub(crate) const HEIGHT: i32 = 7;
+pub const HEIGHT: i32 = 7;
 
 /// Width in pixels of `text` at `scale`.
-pub(crate) fn text_width(text: &str, scale: i32) -> i32 {
+pub fn text_width(text: &str, scale: i32) -> i32 {
     text.chars().count() as i32 * ADVANCE * scale
 }
 
 /// The `scale`×`scale` squares that draw `text` with its top-left corner at `origin`, as the
 /// top-left corners of the squares. Characters outside printable ASCII draw as `?`.
-pub(crate) fn text_pixels(text: &str, origin: (i32, i32), scale: i32) -> Vec<(i32, i32)> {
+pub fn text_pixels(text: &str, origin: (i32, i32), scale: i32) -> Vec<(i32, i32)> {
     let mut squares = Vec::new();
     for (k, c) in text.chars().enumerate() {
         let code = if (' '..='~').contains(&c) { c as usize } else { '?' as usize };

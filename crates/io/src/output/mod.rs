@@ -32,7 +32,7 @@
 //! leaves the files already written intact; CSV rows are appended and flushed one by one.
 
 mod files;
-mod font;
+pub mod font;
 mod frames;
 mod plot;
 mod pvd;
@@ -41,7 +41,7 @@ mod table;
 mod vtk;
 
 pub use frames::{connections_polydata, contacts_polydata, particles_polydata, pfacets_polydata};
-pub use plot::plot_series;
+pub use plot::{plot_series, tick_label, tick_step, ticks};
 pub use pvd::{pvd_xml, PvdEntry};
 pub use series::{
     header_columns, row_values, series_columns, series_values, validate_series, OutputSettings,

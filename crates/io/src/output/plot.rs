@@ -71,8 +71,8 @@ fn data_range(values: impl Iterator<Item = Real>) -> (Real, Real) {
     (lo - pad, hi + pad)
 }
 
-/// A round tick spacing (1, 2 or 5 × 10^k) giving about [`TICKS`] intervals over [lo, hi].
-fn tick_step(lo: Real, hi: Real) -> Real {
+/// A round tick spacing (1, 2 or 5 × 10^k) giving about 5 intervals over [lo, hi].
+pub fn tick_step(lo: Real, hi: Real) -> Real {
     let raw = (hi - lo) / TICKS as Real;
     let magnitude = 10f64.powf(raw.log10().floor());
     let step = [1.0, 2.0, 5.0, 10.0]
@@ -87,8 +87,8 @@ fn tick_step(lo: Real, hi: Real) -> Real {
     }
 }
 
-/// The tick values in [lo, hi] at multiples of `step`.
-fn ticks(lo: Real, hi: Real, step: Real) -> Vec<Real> {
+/// The tick values in [lo, hi] at multiples of `step` (at most 2·5 + 3 of them).
+pub fn ticks(lo: Real, hi: Real, step: Real) -> Vec<Real> {
     let first = (lo / step).ceil();
     (0..=2 * TICKS + 2)
         .map(|k| (first + k as Real) * step)
@@ -98,7 +98,7 @@ fn ticks(lo: Real, hi: Real, step: Real) -> Vec<Real> {
 
 /// A tick label with as many digits as the spacing `step` needs: plain decimals for
 /// moderate magnitudes, scientific notation otherwise.
-fn tick_label(v: Real, step: Real) -> String {
+pub fn tick_label(v: Real, step: Real) -> String {
     let v = if v.abs() < 1e-9 * step { 0.0 } else { v };
     let step_exp = step.abs().log10().floor() as i32;
     let big = v.abs().max(step.abs());
