@@ -24,6 +24,8 @@ pub enum Command {
     Info(SceneArgs),
     /// Continue a run from a checkpoint (written by Ctrl-C or --checkpoint-every).
     Resume(ResumeArgs),
+    /// Run the validation cases and write their report (Markdown and PNG plots).
+    Validate(crate::commands::validate::ValidateArgs),
 }
 
 /// A scene file, for `check` and `info`.

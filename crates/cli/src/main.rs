@@ -23,6 +23,7 @@ fn main() {
         Command::Check(args) => commands::check::check(&args),
         Command::Info(args) => commands::info::info(&args),
         Command::Resume(args) => commands::resume::resume(&args),
+        Command::Validate(args) => commands::validate::validate(&args),
     };
     let code = match result {
         Ok(Outcome::Done) => 0,

@@ -6,6 +6,7 @@ pub mod execute;
 pub mod info;
 pub mod resume;
 pub mod run;
+pub mod validate;
 
 use crate::error::CliError;
 use flexdem_integrate::Simulation;
