@@ -26,6 +26,10 @@ pub enum Command {
     Resume(ResumeArgs),
     /// Run the validation cases and write their report (Markdown and PNG plots).
     Validate(crate::commands::validate::ValidateArgs),
+    /// Time the benchmark scenes (tube impact, PFacet membrane, sphere packing) with 1 and 2
+    /// threads: a table of ms/step, ns per element-step, stage split, memory; CSV to
+    /// bench/results/latest.csv by default.
+    Bench(crate::commands::bench::BenchArgs),
 }
 
 /// A scene file, for `check` and `info`.

@@ -24,6 +24,7 @@ fn main() {
         Command::Info(args) => commands::info::info(&args),
         Command::Resume(args) => commands::resume::resume(&args),
         Command::Validate(args) => commands::validate::validate(&args),
+        Command::Bench(args) => commands::bench::bench(&args),
     };
     let code = match result {
         Ok(Outcome::Done) => 0,

@@ -1,6 +1,7 @@
 //! The subcommands, and what they share: reading a scene, building its simulation, the
 //! worker threads.
 
+pub mod bench;
 pub mod check;
 pub mod execute;
 pub mod info;

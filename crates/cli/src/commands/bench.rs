@@ -1,0 +1,154 @@
+//! `flexdem bench`: the scene benchmarks of `flexdem-bench` (tube impact, PFacet membrane,
+//! sphere packing) at several sizes and thread counts, printed as a table and written as
+//! CSV.
+
+use crate::error::{CliError, Outcome};
+use clap::Args;
+use flexdem_bench::report::{csv, table_header, table_row};
+use flexdem_bench::{run_plan, Plan, SceneKind};
+use std::io::Write as _;
+use std::path::{Path, PathBuf};
+
+/// `flexdem bench`.
+///
+/// Each run builds the scene, runs its warm-up steps (tube_impact 25, so that the sphere
+/// touches the tube; membrane and packing 20), then times the steps in a rayon pool of the
+/// given size. Columns: ms per step, ns per element and step (elements = particles +
+/// connections + PFacets), steps/s, the share of the collision, contacts, links and
+/// integration stages, the contacts at the end, the resident memory per element (VmRSS
+/// after the warm-up minus before the build) and whether the final state is bit-identical
+/// to the first thread count's.
+#[derive(Debug, Args)]
+#[command(after_help = "\
+Each run builds the scene, runs its warm-up steps (tube_impact 25, so that the sphere touches
+the tube; membrane and packing 20), then times the steps in a rayon pool of the given size.
+Columns: ms/step; ns/elem-step with elements = particles (nodes and spheres) + connections +
+PFacets; steps/s; cpu%: process CPU time / wall time (about 100 per thread when the run had
+its cores: lower means the machine is shared); coll%, cont%, link%, intg%, rest%: share of the
+collision, contacts, links and integration stages and of the rest; contacts at the end; B/elem: resident memory per element (VmRSS after
+the warm-up minus VmRSS before the build); vs 1st thr: whether the final state is
+bit-identical to the first thread count's (the command fails if one is DIFFERENT).
+The CSV also has each stage's ms/step, dt, build time and the state checksum.")]
+pub struct BenchArgs {
+    /// Scenes to run: tube_impact, membrane, packing or all (comma-separated).
+    #[arg(long, value_name = "NAME", value_delimiter = ',', default_value = "all")]
+    pub scene: Vec<String>,
+    /// Sizes of the membrane (PFacets) and packing (spheres), comma-separated (default:
+    /// membrane 1000,10000,100000,1000000; packing 1000,10000,100000). The tube impact has
+    /// one size (640 PFacets) and ignores this.
+    #[arg(long, value_name = "N,N,...", value_delimiter = ',',
+          value_parser = clap::value_parser!(u64).range(1..))]
+    pub sizes: Vec<u64>,
+    /// Worker thread counts, comma-separated; every case runs with each, the same steps.
+    #[arg(long, value_name = "T,T,...", value_delimiter = ',', default_value = "1,2",
+          value_parser = clap::value_parser!(u64).range(1..=4096))]
+    pub threads: Vec<u64>,
+    /// Timed steps of every run (default: tube_impact 725, to 0.15 s of simulated time; the
+    /// others as many as take about 1.5 s, 10 to 20000, decided by the first thread count).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..))]
+    pub steps: Option<u64>,
+    /// Warm-up steps before timing (default: per scene, see above).
+    #[arg(long, value_name = "N")]
+    pub warmup: Option<u64>,
+    /// Where the CSV goes: a file (its folder is created), or `-` for standard output (the
+    /// table then goes to standard error).
+    #[arg(long, value_name = "FILE", default_value = "bench/results/latest.csv")]
+    pub csv: PathBuf,
+    /// A smoke test of seconds: small sizes (200), 3 warm-up and 5 timed steps.
+    #[arg(long)]
+    pub quick: bool,
+}
+
+/// Runs the benchmarks, printing each row when done, then writes the CSV.
+pub fn bench(args: &BenchArgs) -> Result<Outcome, CliError> {
+    let plan = plan(args)?;
+    let to_stdout = args.csv.as_os_str() == "-";
+    let mut out: Box<dyn std::io::Write> =
+        if to_stdout { Box::new(std::io::stderr()) } else { Box::new(std::io::stdout()) };
+    let mut print = |line: &str| {
+        let _ = writeln!(out, "{line}");
+        let _ = out.flush();
+    };
+    print(&table_header());
+    let rows =
+        run_plan(&plan, |row| print(&table_row(row))).map_err(|e| CliError::Run(e.to_string()))?;
+    let text = csv(&rows);
+    if to_stdout {
+        print!("{text}");
+    } else {
+        write_csv(&args.csv, &text)?;
+        print(&format!("CSV: {}", args.csv.display()));
+    }
+    if rows.iter().any(|r| r.same_as_first == Some(false)) {
+        return Err(CliError::Run(
+            "the final state depends on the thread count (DIFFERENT above)".into(),
+        ));
+    }
+    Ok(Outcome::Done)
+}
+
+/// The plan of `args`: scenes, sizes, threads, steps.
+fn plan(args: &BenchArgs) -> Result<Plan, CliError> {
+    let mut scenes = Vec::new();
+    for name in &args.scene {
+        let name = name.trim();
+        let more = if name == "all" {
+            SceneKind::ALL.to_vec()
+        } else {
+            vec![SceneKind::parse(name).map_err(|e| CliError::Input(format!("--scene: {e}")))?]
+        };
+        for k in more {
+            if !scenes.contains(&k) {
+                scenes.push(k);
+            }
+        }
+    }
+    let mut plan = if args.quick { Plan::quick(&scenes) } else { Plan::full(&scenes) };
+    if !args.sizes.is_empty() {
+        let sizes = args
+            .sizes
+            .iter()
+            .map(|&s| {
+                usize::try_from(s)
+                    .map_err(|_| CliError::Input(format!("--sizes: {s} is too large")))
+            })
+            .collect::<Result<Vec<usize>, CliError>>()?;
+        plan.cases = scenes
+            .iter()
+            .flat_map(|&k| {
+                match k {
+                    SceneKind::TubeImpact => k.default_sizes(),
+                    _ => sizes.clone(),
+                }
+                .into_iter()
+                .map(move |s| (k, s))
+            })
+            .collect();
+        for &(k, s) in &plan.cases {
+            k.check_size(s).map_err(|e| CliError::Input(format!("--sizes: {e}")))?;
+        }
+    }
+    plan.threads = args
+        .threads
+        .iter()
+        .map(|&t| {
+            usize::try_from(t).map_err(|_| CliError::Input(format!("--threads: {t} is too large")))
+        })
+        .collect::<Result<Vec<usize>, CliError>>()?;
+    if args.steps.is_some() {
+        plan.steps = args.steps;
+    }
+    if args.warmup.is_some() {
+        plan.warmup = args.warmup;
+    }
+    Ok(plan)
+}
+
+/// Writes `text` to `path`, creating its folder.
+fn write_csv(path: &Path, text: &str) -> Result<(), CliError> {
+    let fail = |e: std::io::Error| CliError::Run(format!("cannot write {}: {e}", path.display()));
+    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir).map_err(fail)?;
+    }
+    std::fs::write(path, text).map_err(fail)
+}

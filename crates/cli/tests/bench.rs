@@ -1,0 +1,77 @@
+//! `flexdem bench`: a quick run prints its table, writes the CSV and finds the state
+//! independent of the thread count; bad options exit with code 2.
+
+use std::process::{Command, Output};
+
+fn flexdem<S: AsRef<std::ffi::OsStr>>(args: &[S]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_flexdem")).args(args).output().expect("flexdem starts")
+}
+
+fn text(bytes: &[u8]) -> String {
+    String::from_utf8_lossy(bytes).into_owned()
+}
+
+#[test]
+fn quick_bench_prints_the_table_and_writes_the_csv() {
+    let dir = tempfile::tempdir().unwrap();
+    let csv = dir.path().join("results/quick.csv");
+    let out = flexdem(&[
+        "bench".as_ref(),
+        "--quick".as_ref(),
+        "--scene".as_ref(),
+        "membrane,packing".as_ref(),
+        "--csv".as_ref(),
+        csv.as_os_str(),
+    ]);
+    let stdout = text(&out.stdout);
+    assert!(out.status.success(), "{stdout}\n{}", text(&out.stderr));
+    assert!(stdout.starts_with("scene "), "{stdout}");
+    assert!(stdout.contains("ns/elem-step"), "{stdout}");
+    assert_eq!(stdout.matches("identical").count(), 2, "{stdout}");
+    assert!(!stdout.contains("tube_impact"), "{stdout}");
+    let table = std::fs::read_to_string(&csv).unwrap();
+    let lines: Vec<&str> = table.lines().collect();
+    assert_eq!(lines.len(), 5, "{table}");
+    let columns = lines[0].split(',').count();
+    assert!(lines.iter().all(|l| l.split(',').count() == columns), "{table}");
+    assert!(lines[1].starts_with("membrane,200,") && lines[4].starts_with("packing,200,"));
+    assert!(lines[2].ends_with(",identical") && lines[4].ends_with(",identical"), "{table}");
+}
+
+#[test]
+fn csv_to_standard_output_and_sizes() {
+    let out = flexdem(&[
+        "bench",
+        "--scene",
+        "membrane",
+        "--sizes",
+        "50",
+        "--threads",
+        "2",
+        "--steps",
+        "2",
+        "--warmup",
+        "1",
+        "--csv",
+        "-",
+    ]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let stdout = text(&out.stdout);
+    assert!(stdout.starts_with("scene,size,elements,"), "{stdout}");
+    assert!(stdout.lines().nth(1).unwrap().starts_with("membrane,50,"), "{stdout}");
+    assert!(text(&out.stderr).contains("ms/step"), "the table goes to standard error");
+}
+
+#[test]
+fn bad_options_exit_with_code_2() {
+    for (args, message) in [
+        (&["bench", "--scene", "tube"][..], "unknown scene \"tube\""),
+        (&["bench", "--scene", "packing", "--sizes", "5"][..], "packing: size 5"),
+    ] {
+        let out = flexdem(args);
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        assert!(text(&out.stderr).contains(message), "{args:?}: {}", text(&out.stderr));
+    }
+    let out = flexdem(&["bench", "--threads", "0"]);
+    assert_eq!(out.status.code(), Some(2));
+}
