@@ -86,6 +86,7 @@ pub struct Contacts {
 /// Buffers of [`Contacts::detect`].
 #[derive(Clone, Debug, Default)]
 struct Scratch {
+    order: Vec<(Feature, Feature, u32)>,
     hulls: Vec<Hull>,
     maybe: Vec<bool>,
     near: Vec<(u32, u32)>,
@@ -328,7 +329,16 @@ impl Contacts {
                 });
             }
         }
-        all.par_sort_unstable_by_key(|t| (t.candidate.site1.feature, t.candidate.site2.feature));
+        // sorted by key through a small (key, index) list: the touchings themselves are large
+        // and moving them in the sort cost more than the sort's comparisons
+        let order = &mut scratch.order;
+        order.clear();
+        order.extend(
+            all.iter()
+                .enumerate()
+                .map(|(n, t)| (t.candidate.site1.feature, t.candidate.site2.feature, n as u32)),
+        );
+        order.par_sort_unstable();
 
         // 3. match with the last step's contacts (both sorted by key)
         std::mem::swap(&mut self.list, &mut scratch.previous);
@@ -340,8 +350,9 @@ impl Contacts {
         let mut fresh = std::mem::take(&mut self.fresh);
         fresh.clear();
         let mut k = 0;
-        for (n, t) in all.iter().enumerate() {
-            let key = (t.candidate.site1.feature, t.candidate.site2.feature);
+        for (n, &(f1, f2, index)) in order.iter().enumerate() {
+            let t = &all[index as usize];
+            let key = (f1, f2);
             while k < old.len() && old[k].key() < key {
                 k += 1;
             }
