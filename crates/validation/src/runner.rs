@@ -39,14 +39,20 @@ pub fn single_threaded<T: Send>(f: impl FnOnce() -> T + Send) -> T {
 /// one broken case does not stop the others.
 pub fn run_case(ctx: &Context, case: &Case) -> Result<CaseReport, ValidationError> {
     let run = case.run;
-    std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| run(ctx))).unwrap_or_else(|panic| {
-        let message = panic
-            .downcast_ref::<String>()
-            .cloned()
-            .or_else(|| panic.downcast_ref::<&str>().map(|s| s.to_string()))
-            .unwrap_or_else(|| "unknown panic".into());
-        Err(ValidationError::Case { case: case.id.into(), message: format!("panicked: {message}") })
-    })
+    // every case runs inside a one-thread pool: the scenes are small, and the engine's
+    // parallel loops called from outside a pool would hand each loop to a worker and wait
+    std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| single_threaded(|| run(ctx))))
+        .unwrap_or_else(|panic| {
+            let message = panic
+                .downcast_ref::<String>()
+                .cloned()
+                .or_else(|| panic.downcast_ref::<&str>().map(|s| s.to_string()))
+                .unwrap_or_else(|| "unknown panic".into());
+            Err(ValidationError::Case {
+                case: case.id.into(),
+                message: format!("panicked: {message}"),
+            })
+        })
 }
 
 /// Runs the [`selected_cases`] in report order, calling `done` after each with its result and
