@@ -16,6 +16,7 @@
 
 use crate::plot::{plot_xy, Curve, CurveStyle, PlotSpec};
 use crate::report::{CaseReport, Check, Context, Figure};
+use crate::runner::run_to_rest;
 use crate::ValidationError;
 use flexdem_contact::Material;
 use flexdem_elements::builders::{chain, StructureOptions};
@@ -117,30 +118,6 @@ pub fn circular_arc_chain(d: Real, s: Real, n: usize) -> Vec<Vec3> {
             Vec3::new(radius * phi.sin(), 0.0, centre_z - radius * phi.cos())
         })
         .collect()
-}
-
-/// Runs `sim` in chunks of `chunk` steps until the largest speed stays below `tol` for a
-/// whole chunk or `max_steps` are done; returns the steps run.
-fn run_to_rest(
-    sim: &mut Simulation,
-    tol: Real,
-    chunk: u64,
-    max_steps: u64,
-) -> Result<u64, ValidationError> {
-    let mut done = 0;
-    while done < max_steps {
-        let mut quiet = true;
-        for _ in 0..chunk {
-            sim.step()?;
-            let fastest = sim.model.particles.vel.iter().map(|v| v.norm()).fold(0.0, Real::max);
-            quiet &= fastest <= tol;
-        }
-        done += chunk;
-        if quiet {
-            break;
-        }
-    }
-    Ok(done)
 }
 
 /// validation.md case 6: catenary (run on one thread: 21 bodies).

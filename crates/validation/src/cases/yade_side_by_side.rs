@@ -9,6 +9,7 @@
 
 use crate::plot::{plot_xy, Curve, CurveStyle, PlotSpec};
 use crate::report::{CaseReport, Check, Context, Figure};
+use crate::runner::{max_speed, run_to_rest};
 use crate::ValidationError;
 use flexdem_contact::{LinkKinematicsMode, Material};
 use flexdem_elements::builders::{chain, net, straight_line, GridLayout, StructureOptions};
@@ -74,34 +75,6 @@ pub fn json_number(value: &Value, pointer: &str, path: &Path) -> Result<Real, Va
         path: path.to_path_buf(),
         message: format!("no number at {pointer}"),
     })
-}
-
-/// Largest speed of any particle.
-fn max_speed(sim: &Simulation) -> Real {
-    sim.model.particles.vel.iter().map(|v| v.norm()).fold(0.0, Real::max)
-}
-
-/// Runs `sim` in chunks of `chunk` steps until the largest speed stays below `tol` for a
-/// whole chunk or `max_steps` are done; returns the steps run.
-fn run_to_rest(
-    sim: &mut Simulation,
-    tol: Real,
-    chunk: u64,
-    max_steps: u64,
-) -> Result<u64, ValidationError> {
-    let mut done = 0;
-    while done < max_steps {
-        let mut quiet = true;
-        for _ in 0..chunk {
-            sim.step()?;
-            quiet &= max_speed(sim) <= tol;
-        }
-        done += chunk;
-        if quiet {
-            break;
-        }
-    }
-    Ok(done)
 }
 
 /// The cantilever against YADE (validation.md case 2, yade kinematics), on one thread.
