@@ -51,6 +51,33 @@ fn a_fixed_step_above_the_critical_one_warns() {
     );
 }
 
+/// A fixed dt below the critical step at the start, above it once the sphere has hit the tube
+/// (the contacts stiffen the nodes): the critical step is re-estimated during the run and one
+/// warning is raised, before the run becomes unstable.
+#[test]
+fn a_fixed_step_overtaken_by_contacts_warns_during_the_run() {
+    let scene = root_path("examples/tube_impact_solid.toml");
+    let scene = flexdem::io::scene::load_scene(&scene).unwrap();
+    let probe = Simulation::new(scene.model.clone(), scene.settings.clone()).unwrap();
+    let dt = 0.8 * probe.critical_dt();
+    let settings = Settings { time_step: TimeStep::Fixed(dt), ..scene.settings.clone() };
+    let mut sim = Simulation::new(scene.model, settings).unwrap();
+    assert!(sim.warnings().is_empty(), "{:?}", sim.warnings());
+    let mut warned_at = None;
+    for _ in 0..2000 {
+        if sim.step().is_err() {
+            break;
+        }
+        if warned_at.is_none() && !sim.warnings().is_empty() {
+            warned_at = Some(sim.steps());
+        }
+    }
+    let said: Vec<_> =
+        sim.warnings().iter().filter(|w| w.contains("above the critical step")).collect();
+    assert_eq!(said.len(), 1, "{:?}", sim.warnings());
+    assert!(warned_at.is_some_and(|s| s > 1) && sim.critical_dt() < dt);
+}
+
 /// A thin cable (radius 2 µm, links of 0.1 m) swinging under gravity moves by far more than its
 /// radius per step: that is no instability, and the run goes on (the guard uses the size of
 /// the smallest element holding a node).
@@ -207,4 +234,9 @@ fn a_snapshot_continues_bit_identically() {
     assert!(a.model.particles.vel == b.model.particles.vel, "velocities differ");
     assert_eq!(a.energy(), b.energy());
     assert_eq!(a.contacts.list.len(), b.contacts.list.len());
+}
+
+/// A path relative to the workspace root.
+fn root_path(relative: &str) -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(relative)
 }

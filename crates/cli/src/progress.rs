@@ -73,6 +73,11 @@ impl Progress {
         f.clamp(0.0, 1.0)
     }
 
+    /// Runs `f` (which prints to the terminal) with the bar cleared, then redraws it.
+    pub fn suspend<R>(&self, f: impl FnOnce() -> R) -> R {
+        self.bar.suspend(f)
+    }
+
     /// Updates the bar (at most every 100 ms).
     pub fn tick(&mut self, sim: &Simulation) {
         if self.bar.is_hidden() {

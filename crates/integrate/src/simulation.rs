@@ -105,6 +105,9 @@ pub struct Snapshot {
     pub warnings: Vec<String>,
 }
 
+/// How the warning about a fixed dt above the critical step begins.
+const FIXED_DT_WARNING: &str = "the fixed time step";
+
 /// A simulation in progress.
 pub struct Simulation {
     /// Bodies, structures and materials.
@@ -372,10 +375,14 @@ impl Simulation {
                 safety * critical
             }
             TimeStep::Fixed(dt) => {
-                if dt > critical {
+                // once: the check is redone periodically and would repeat itself
+                let said = self.warnings.iter().any(|w| w.starts_with(FIXED_DT_WARNING));
+                if dt > critical && !said {
                     self.warnings.push(format!(
-                        "the fixed time step {dt:.3e} s is above the critical step {critical:.3e} s: \
-                         the run may explode; use dt = auto or a step below {critical:.3e} s"
+                        "{FIXED_DT_WARNING} {dt:.3e} s is above the critical step {critical:.3e} s \
+                         (at step {steps}): the run may explode; use dt = auto or a step below \
+                         {critical:.3e} s",
+                        steps = self.steps
                     ));
                 }
                 dt
@@ -457,11 +464,11 @@ impl Simulation {
 
         self.check_finite()?;
         self.account_energy(&work, &link_sums, dt);
-        if let TimeStep::Auto { .. } = self.settings.time_step {
-            let since = self.steps - self.dt_updated_at;
-            if since >= self.settings.time_step_interval || (appeared && since >= 10) {
-                self.update_time_step()?;
-            }
+        // the critical step is re-estimated for a fixed dt too, to warn when contacts or
+        // large deformations have brought it below that dt
+        let since = self.steps - self.dt_updated_at;
+        if since >= self.settings.time_step_interval || (appeared && since >= 10) {
+            self.update_time_step()?;
         }
         Ok(())
     }

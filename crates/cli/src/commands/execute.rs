@@ -128,6 +128,7 @@ fn execute_on_worker(mut job: Job) -> Result<Outcome, CliError> {
     }
     let mut progress = Progress::new(&job.sim, job.target, job.quiet);
     let mut status = Status::Completed;
+    let mut warned = job.sim.warnings().len();
     while failure.is_none() && !reached(&job.sim, job.target) {
         if interrupted.load(Ordering::SeqCst) {
             status = Status::Interrupted;
@@ -152,6 +153,11 @@ fn execute_on_worker(mut job: Job) -> Result<Outcome, CliError> {
                 }
             }
         }
+        // warnings raised during the run (a fixed dt that became too large)
+        for warning in &job.sim.warnings()[warned..] {
+            progress.suspend(|| eprintln!("warning: {warning}"));
+        }
+        warned = job.sim.warnings().len();
         progress.tick(&job.sim);
     }
     progress.finish();
