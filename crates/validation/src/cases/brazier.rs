@@ -434,20 +434,3 @@ fn notes_text(m18: Real, m_lattice: Real, bending: &BendingResult) -> String {
     }
     notes
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn quick_run_measures_the_wall_stiffness_and_the_linear_bending() {
-        let dir = tempfile::tempdir().expect("a temporary folder");
-        let ctx = Context { out_dir: dir.path().to_path_buf(), quick: true };
-        let report = run(&ctx).expect("the case runs");
-        assert_eq!(report.checks.len(), 2, "{}", report.checks_table());
-        assert!(report.passed(), "{}\n{:?}", report.checks_table(), report.informative);
-        for figure in &report.figures {
-            assert!(dir.path().join(&figure.file).is_file(), "{} missing", figure.file);
-        }
-    }
-}

@@ -155,13 +155,8 @@ fn normal_checks(
     ));
 }
 
-/// Chung & Ooi test 1: elastic normal impact of a sphere on a rigid wall (on one thread).
-pub fn run_test_1(ctx: &Context) -> Result<CaseReport, ValidationError> {
-    crate::runner::single_threaded(|| test_1(ctx))
-}
-
-/// Test 1 on the current thread pool.
-fn test_1(_ctx: &Context) -> Result<CaseReport, ValidationError> {
+/// Chung & Ooi test 1: elastic normal impact of a sphere on a rigid wall.
+pub fn run_test_1(_ctx: &Context) -> Result<CaseReport, ValidationError> {
     let (r, v) = (0.01, 10.0);
     let mut report = CaseReport::new(
         "chung_ooi_1",
@@ -189,13 +184,8 @@ fn test_1(_ctx: &Context) -> Result<CaseReport, ValidationError> {
     Ok(report)
 }
 
-/// Chung & Ooi test 2: elastic normal impact of two identical spheres (on one thread).
-pub fn run_test_2(ctx: &Context) -> Result<CaseReport, ValidationError> {
-    crate::runner::single_threaded(|| test_2(ctx))
-}
-
-/// Test 2 on the current thread pool.
-fn test_2(_ctx: &Context) -> Result<CaseReport, ValidationError> {
+/// Chung & Ooi test 2: elastic normal impact of two identical spheres.
+pub fn run_test_2(_ctx: &Context) -> Result<CaseReport, ValidationError> {
     let (r, v) = (0.1, 10.0);
     let mut report = CaseReport::new(
         "chung_ooi_2",
@@ -264,14 +254,8 @@ fn gross_sliding_answer(theta: Real, e: Real) -> (Real, Real) {
     (1.0 - mu * (1.0 + e) / theta.tan(), 5.0 * mu * (1.0 + e) * vn / (2.0 * r))
 }
 
-/// Chung & Ooi test 4: oblique impact of a sphere on a rigid wall over a sweep of angles (on
-/// one thread).
+/// Chung & Ooi test 4: oblique impact of a sphere on a rigid wall over a sweep of angles.
 pub fn run_test_4(ctx: &Context) -> Result<CaseReport, ValidationError> {
-    crate::runner::single_threaded(|| test_4(ctx))
-}
-
-/// Test 4 on the current thread pool.
-fn test_4(ctx: &Context) -> Result<CaseReport, ValidationError> {
     let (r, e, nu, rho, mu, speed) = TEST_4;
     let restitution = 1.0;
     let threshold = (3.5 * mu * (1.0 + restitution)).atan();

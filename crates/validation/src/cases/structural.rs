@@ -120,13 +120,8 @@ pub fn circular_arc_chain(d: Real, s: Real, n: usize) -> Vec<Vec3> {
         .collect()
 }
 
-/// validation.md case 6: catenary (run on one thread: 21 bodies).
+/// validation.md case 6: catenary.
 pub fn run_catenary(ctx: &Context) -> Result<CaseReport, ValidationError> {
-    crate::runner::single_threaded(|| catenary(ctx))
-}
-
-/// The catenary case, on the current thread pool.
-fn catenary(ctx: &Context) -> Result<CaseReport, ValidationError> {
     let n: usize = 20;
     let a = catenary_parameter(SPAN, LENGTH);
     let sag = a * ((SPAN / (2.0 * a)).cosh() - 1.0);

@@ -27,11 +27,6 @@ const GRAVITY: Real = 10.0;
 /// for the residual motion.
 const TOL: Real = 1e-6;
 
-/// The force splits against YADE, on one thread.
-pub fn run_force_splits(ctx: &Context) -> Result<CaseReport, ValidationError> {
-    crate::runner::single_threaded(|| force_splits(ctx))
-}
-
 /// What a sphere at rest on fixed elements gave: the z force on each node (N), the number of
 /// contacts and the sphere's height (m).
 struct Rest {
@@ -98,8 +93,8 @@ fn pfacet_model() -> Result<(Model, Range<u32>), ValidationError> {
     Ok((model, nodes))
 }
 
-/// The force-split case on the current thread pool.
-fn force_splits(_ctx: &Context) -> Result<CaseReport, ValidationError> {
+/// The force splits against YADE.
+pub fn run_force_splits(_ctx: &Context) -> Result<CaseReport, ValidationError> {
     let mut report =
         CaseReport::new("yade_force_splits", "Force splits among nodes against YADE 2023.02a");
     report.setup = format!(

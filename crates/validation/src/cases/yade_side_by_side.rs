@@ -77,13 +77,8 @@ pub fn json_number(value: &Value, pointer: &str, path: &Path) -> Result<Real, Va
     })
 }
 
-/// The cantilever against YADE (validation.md case 2, yade kinematics), on one thread.
+/// The cantilever against YADE (validation.md case 2, yade kinematics).
 pub fn run_cantilever(ctx: &Context) -> Result<CaseReport, ValidationError> {
-    crate::runner::single_threaded(|| cantilever(ctx))
-}
-
-/// The cantilever case on the current thread pool.
-fn cantilever(ctx: &Context) -> Result<CaseReport, ValidationError> {
     let dir = yade_data_dir().join("cantilever");
     let summary_path = dir.join("cantilever_summary.json");
     let summary = read_json(&summary_path)?;
@@ -221,11 +216,6 @@ fn cantilever(ctx: &Context) -> Result<CaseReport, ValidationError> {
     Ok(report)
 }
 
-/// The sphere on a net against YADE, on one thread.
-pub fn run_sphere_on_net(ctx: &Context) -> Result<CaseReport, ValidationError> {
-    crate::runner::single_threaded(|| sphere_on_net(ctx))
-}
-
 /// Net of the YADE scene: cells, spacing (m), link radius (m).
 const NET_CELLS: usize = 6;
 const NET_SPACING: Real = 0.1;
@@ -234,8 +224,8 @@ const NET_RADIUS: Real = 0.005;
 const SPHERE_RADIUS: Real = 0.1;
 const SPHERE_MASS: Real = 1.0;
 
-/// The sphere-on-net case on the current thread pool.
-fn sphere_on_net(ctx: &Context) -> Result<CaseReport, ValidationError> {
+/// The sphere on a net against YADE.
+pub fn run_sphere_on_net(ctx: &Context) -> Result<CaseReport, ValidationError> {
     let dir = yade_data_dir().join("sphere_on_net");
     let summary_path = dir.join("sphere_on_net_summary.json");
     let summary = read_json(&summary_path)?;
