@@ -104,29 +104,19 @@ impl Collider {
             c.pfacet_element[k] = c.elements.len() as u32;
             c.elements.push(Element::PFacet(k as u32));
         }
-        c.margins =
-            c.elements.iter().map(|&e| 0.5 * verlet_factor * element_size(model, e)).collect();
+        let sizes: Vec<Real> = c.elements.iter().map(|&e| element_size(model, e)).collect();
+        c.margins = sizes.iter().map(|&size| 0.5 * verlet_factor * size).collect();
         c.limits = vec![Real::INFINITY; p.len()];
         let mut smallest = vec![Real::INFINITY; p.len()];
-        for (&e, &m) in c.elements.iter().zip(&c.margins) {
+        for ((&e, &m), &size) in c.elements.iter().zip(&c.margins).zip(&sizes) {
             let held: &[u32] = match e {
                 Element::Particle(i) => &[i],
                 _ => Self::nodes(model, e),
             };
-            let size = element_size(model, e);
             for &n in held {
                 let n = n as usize;
                 c.limits[n] = c.limits[n].min(m);
                 smallest[n] = smallest[n].min(size);
-            }
-        }
-        // elements of structures whose connections are not collidable (a chain of PFacets is
-        // always held by its PFacets; a chain of links alone by its connections)
-        for conn in &model.connections {
-            let size = 0.5 * (p.pos[conn.nodes[0] as usize] - p.pos[conn.nodes[1] as usize]).norm()
-                + conn.radius;
-            for &n in &conn.nodes {
-                smallest[n as usize] = smallest[n as usize].min(size);
             }
         }
         c.reach = p

@@ -191,14 +191,4 @@ impl Links {
                 }
             });
     }
-
-    /// Elastic energy stored in the links at the last update.
-    pub fn elastic_energy(&self) -> Real {
-        self.forces.iter().map(|f| f.elastic_energy).sum()
-    }
-
-    /// Energy dissipated by the links since they were made (plastic caps, slip, breakage).
-    pub fn dissipated(&self) -> Real {
-        self.state.iter().map(|s| s.dissipated.total()).sum()
-    }
 }
