@@ -103,6 +103,34 @@ impl Links {
         self.node_offsets = count;
     }
 
+    /// Whether these links (read from a checkpoint, say) fit `model`: one link per
+    /// connection, on the connection's nodes, with as many constants and states, and the
+    /// node → loads index that [`Links::from_model`] builds for them (every offset and load
+    /// code in range). [`Links::update`] and [`Links::add_loads`] index the particles and the
+    /// forces with these numbers without further checks. `model` must have been validated
+    /// (`Model::validate`: connection node ids in range).
+    pub fn check_against(&self, model: &Model) -> bool {
+        let n_links = model.connections.len();
+        let n_particles = model.particles.len();
+        let same_nodes = self.nodes.len() == n_links
+            && self.nodes.iter().zip(&model.connections).all(|(l, c)| *l == c.nodes)
+            && self.nodes.iter().flatten().all(|&n| (n as usize) < n_particles);
+        if !(same_nodes && self.params.len() == n_links && self.state.len() == n_links) {
+            return false;
+        }
+        let mut fresh = Links {
+            nodes: self.nodes.clone(),
+            params: Vec::new(),
+            state: Vec::new(),
+            forces: Vec::new(),
+            node_offsets: Vec::new(),
+            node_loads: Vec::new(),
+            chunk_sums: Vec::new(),
+        };
+        fresh.index_nodes(n_particles);
+        fresh.node_offsets == self.node_offsets && fresh.node_loads == self.node_loads
+    }
+
     /// Number of links.
     pub fn len(&self) -> usize {
         self.nodes.len()
@@ -190,5 +218,53 @@ impl Links {
                     }
                 }
             });
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use flexdem_contact::Material;
+    use flexdem_elements::builders::{chain, straight_line};
+    use flexdem_elements::StructureOptions;
+
+    fn chain_model() -> Model {
+        let mut model = Model::new();
+        let mat = model.add_material(Material::new(1e7, 0.3, 1000.0, 0.5).unwrap()).unwrap();
+        let points = straight_line(Vec3::zeros(), Vec3::x(), 4).unwrap();
+        chain(&mut model, &points, &StructureOptions::new("c", 0.01, mat)).unwrap();
+        model
+    }
+
+    #[test]
+    fn links_of_the_model_fit_it() {
+        let model = chain_model();
+        let links = Links::from_model(&model, LinkKinematicsMode::Beam);
+        assert!(links.check_against(&model));
+    }
+
+    /// A checkpoint whose links were altered (with a recomputed checksum) used to panic with
+    /// an index out of bounds in `add_loads`: each alteration is caught.
+    #[test]
+    fn altered_links_do_not_fit() {
+        let model = chain_model();
+        let good = Links::from_model(&model, LinkKinematicsMode::Beam);
+        let alterations: [fn(&mut Links); 7] = [
+            |l| l.node_loads[3] = 1000,
+            |l| l.node_loads.swap(0, 1),
+            |l| l.node_offsets[2] = 99,
+            |l| l.node_offsets.truncate(3),
+            |l| l.nodes[1] = [0, 4],
+            |l| l.nodes[0] = [0, 77],
+            |l| l.state.truncate(2),
+        ];
+        for (k, alter) in alterations.iter().enumerate() {
+            let mut links = good.clone();
+            alter(&mut links);
+            assert!(!links.check_against(&model), "alteration {k} not caught");
+        }
+        let mut other = chain_model();
+        other.connections.pop();
+        assert!(!good.check_against(&other));
     }
 }
