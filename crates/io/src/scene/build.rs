@@ -8,7 +8,7 @@ use super::schema::{
 };
 use super::spheres::SphereGroup;
 use super::structures::BuiltStructure;
-use super::{RunLength, Scene};
+use super::{check_step_count, RunLength, Scene, MAX_THREADS};
 use crate::output::OutputSettings;
 use flexdem_contact::{FailureMode, LinkKinematicsMode, Material};
 use flexdem_elements::{Dofs, MaterialId, Model};
@@ -42,11 +42,23 @@ pub(crate) fn build(file: SceneFile, ctx: Ctx<'_>, source: &Path) -> Result<Scen
     for (name, spec) in &file.materials {
         b.add_material(name, spec)?;
     }
+    // the simulation's memory, estimated as each part is added (the model is a fraction of
+    // it), refused at the part that does not fit
+    let available = super::memory::available_memory();
+    let fits =
+        |b: &Builder<'_>, span: std::ops::Range<usize>, key: &str| match super::memory::too_large(
+            &b.model, available,
+        ) {
+            Some(message) => Err(ctx.at(span, key, message)),
+            None => Ok(()),
+        };
     for s in &file.structures {
         b.add_structure(s)?;
+        fits(&b, s.span(), "structures")?;
     }
     for s in &file.spheres {
         b.add_spheres(s)?;
+        fits(&b, s.span(), "spheres")?;
     }
     for w in &file.walls {
         b.add_wall(w)?;
@@ -157,6 +169,17 @@ impl Builder<'_> {
                 ))
             }
         };
+        // the step count is known now for a fixed dt (for dt = "auto", once the simulation is
+        // built: `check_step_count`)
+        let run_span = sim.steps.as_ref().map(|n| (n.span(), "steps"));
+        let run_span = run_span.or(sim.duration.as_ref().map(|d| (d.span(), "duration")));
+        let step = match settings.time_step {
+            TimeStep::Fixed(dt) => dt,
+            TimeStep::Auto { .. } => Real::INFINITY,
+        };
+        if let (Err(message), Some((span, k))) = (check_step_count(run, step), run_span) {
+            return Err(ctx.at(span, &key(k), message));
+        }
         if let Some(g) = &sim.gravity {
             settings.gravity = ctx.vec3(g, &key("gravity"), "m/s²")?;
         }
@@ -172,7 +195,17 @@ impl Builder<'_> {
             settings.damping = v;
         }
         let threads = match &sim.threads {
-            Some(t) => Some(ctx.count(t, &key("threads"), 1)?),
+            Some(t) => {
+                let n = ctx.count(t, &key("threads"), 1)?;
+                if n > MAX_THREADS {
+                    return Err(ctx.at(
+                        t.span(),
+                        &key("threads"),
+                        format!("is {n}: expected a whole number in [1, {MAX_THREADS}]"),
+                    ));
+                }
+                Some(n)
+            }
             None => None,
         };
         if let Some(m) = &sim.link_kinematics {

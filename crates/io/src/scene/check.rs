@@ -38,7 +38,7 @@ impl Ctx<'_> {
 
     /// Three finite numbers.
     pub fn vec3(&self, v: &S<V3>, key: &str, unit: &str) -> Result<Vec3, SceneError> {
-        let a = *v.get_ref();
+        let a = v.get_ref().0;
         if a.iter().all(|c| c.is_finite()) {
             Ok(Vec3::from(a))
         } else {

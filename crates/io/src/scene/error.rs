@@ -110,13 +110,16 @@ impl<'a> Ctx<'a> {
         let key = if !spanned.is_empty() && after.trim_start().starts_with('=') {
             clean_key(spanned)
         } else {
-            line.get(..col).and_then(|prefix| prefix.rfind('=').map(|eq| &prefix[..eq])).map_or(
+            line.get(..col).and_then(|prefix| last_assignment(prefix).map(|eq| &prefix[..eq])).map_or(
                 String::new(),
                 |before| {
                     let before = before.trim_end();
+                    // after the last character that cannot be part of a key (which may be
+                    // several bytes long: `·`, `é`)
                     let from = before
-                        .rfind(|c: char| !(c.is_alphanumeric() || "_-.\"'".contains(c)))
-                        .map_or(0, |i| i + 1);
+                        .char_indices()
+                        .rfind(|&(_, c)| !(c.is_alphanumeric() || "_-.\"'".contains(c)))
+                        .map_or(0, |(i, c)| i + c.len_utf8());
                     clean_key(&before[from..])
                 },
             )
@@ -127,6 +130,27 @@ impl<'a> Ctx<'a> {
             (false, false) => format!("{header}.{key}"),
         }
     }
+}
+
+/// Byte index of the last `=` of `line` outside quoted strings (an `=` inside a string value,
+/// even an unterminated one, is not an assignment).
+fn last_assignment(line: &str) -> Option<usize> {
+    let mut quote = None;
+    let mut escaped = false;
+    let mut last = None;
+    for (i, c) in line.char_indices() {
+        match quote {
+            Some('"') if escaped => escaped = false,
+            Some('"') if c == '\\' => escaped = true,
+            Some(q) if c == q => quote = None,
+            Some(_) => {}
+            None if c == '"' || c == '\'' => quote = Some(c),
+            None if c == '#' => break,
+            None if c == '=' => last = Some(i),
+            None => {}
+        }
+    }
+    last
 }
 
 /// serde's type names in words an engineer reads.
@@ -229,6 +253,21 @@ mod tests {
         let k = text.find("young").unwrap();
         assert_eq!(ctx.key_at(k..k + 5), "materials.steel.young");
         assert_eq!(ctx.key_at(0..1), "simulation");
+    }
+
+    /// The key finder used to cut a line in the middle of `·` (two bytes) and panic with
+    /// "byte index is not a char boundary"; an `=` inside a string is not the assignment.
+    #[test]
+    fn keys_next_to_non_ascii_characters() {
+        let text = "[simulation]\nsteps = 10\ndt = \"a·b = 1\n";
+        let ctx = Ctx { file: "a.toml", text };
+        let at = text.len() - 1;
+        assert_eq!(ctx.key_at(at..at + 1), "simulation.dt");
+        let text = "[simulation]\nré·x = 1\n";
+        let ctx = Ctx { file: "a.toml", text };
+        let at = text.find('1').unwrap();
+        assert_eq!(ctx.key_at(at..at + 1), "simulation.x");
+        assert_eq!(last_assignment("a = \"x = \\\" = y\" # = z"), Some(2));
     }
 
     #[test]

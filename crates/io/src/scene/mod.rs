@@ -10,7 +10,9 @@
 mod build;
 mod check;
 mod error;
+pub mod memory;
 mod output;
+mod overlap;
 pub mod packing;
 pub mod placement;
 mod schema;
@@ -26,6 +28,33 @@ use flexdem_elements::Model;
 use flexdem_geom::Real;
 use flexdem_integrate::{Load, Settings};
 use std::path::{Path, PathBuf};
+
+/// Largest number of worker threads a scene (`simulation.threads`) or the command line
+/// (`--threads`) may ask for.
+pub const MAX_THREADS: usize = 4096;
+
+/// Largest number of steps a run may last (`steps`, or `duration` over the time step): 10¹²
+/// steps take weeks even at a million steps per second, so more is a typo (`dt = 1e-300`).
+pub const MAX_STEPS: u64 = 1_000_000_000_000;
+
+/// `Err(message)` when `run` at time step `dt` lasts more than [`MAX_STEPS`] steps.
+pub fn check_step_count(run: RunLength, dt: Real) -> Result<(), String> {
+    let steps = match run {
+        RunLength::Steps(n) => n as Real,
+        RunLength::Duration(d) => d / dt,
+    };
+    if steps <= MAX_STEPS as Real {
+        return Ok(());
+    }
+    Err(match run {
+        RunLength::Steps(n) => format!("is {n} steps: expected at most {MAX_STEPS}"),
+        RunLength::Duration(d) => format!(
+            "{d} s at dt = {dt:e} s is {steps:.3e} steps: expected at most {:e} \
+             (a shorter duration or a larger time step)",
+            MAX_STEPS as Real
+        ),
+    })
+}
 
 /// How long a run lasts.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]

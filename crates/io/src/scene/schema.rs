@@ -13,7 +13,51 @@ use std::fmt;
 /// A value with its byte span in the file.
 pub(crate) type S<T> = Spanned<T>;
 /// Three numbers `[x, y, z]`.
-pub(crate) type V3 = [f64; 3];
+pub(crate) type V3 = Arr<f64, 3>;
+
+/// Exactly `N` values `[a, b, ...]`. serde's arrays read the first `N` values of a longer
+/// TOML array and drop the rest without a word (`gravity = [0, 0, -9.81, 1]`); this refuses
+/// any other length, with the error at the array.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Arr<T, const N: usize>(pub [T; N]);
+
+impl<'de, T, const N: usize> Deserialize<'de> for Arr<T, N>
+where
+    T: Deserialize<'de> + Copy + Default,
+{
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct ArrVisitor<T, const N: usize>(std::marker::PhantomData<T>);
+        impl<'de, T, const N: usize> Visitor<'de> for ArrVisitor<T, N>
+        where
+            T: Deserialize<'de> + Copy + Default,
+        {
+            type Value = Arr<T, N>;
+            fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                write!(f, "an array of length {N}")
+            }
+            fn visit_seq<A: de::SeqAccess<'de>>(self, mut seq: A) -> Result<Arr<T, N>, A::Error> {
+                let mut out = [T::default(); N];
+                let mut len = 0;
+                while len < N {
+                    match seq.next_element::<T>()? {
+                        Some(x) => out[len] = x,
+                        None => return Err(de::Error::invalid_length(len, &self)),
+                    }
+                    len += 1;
+                }
+                while seq.next_element::<de::IgnoredAny>()?.is_some() {
+                    len += 1;
+                }
+                if len == N {
+                    Ok(Arr(out))
+                } else {
+                    Err(de::Error::invalid_length(len, &self))
+                }
+            }
+        }
+        d.deserialize_seq(ArrVisitor(std::marker::PhantomData))
+    }
+}
 
 /// The whole file.
 #[derive(Debug, Deserialize)]
@@ -141,8 +185,8 @@ pub(crate) struct StructureSpec {
     pub origin: Option<S<V3>>,
     pub u_dir: Option<S<V3>>,
     pub v_dir: Option<S<V3>>,
-    pub size: Option<S<[f64; 2]>>,
-    pub cells: Option<S<[i64; 2]>>,
+    pub size: Option<S<Arr<f64, 2>>>,
+    pub cells: Option<S<Arr<i64, 2>>>,
     pub diagonals: Option<S<bool>>,
     // disc
     pub normal: Option<S<V3>>,
@@ -176,7 +220,7 @@ pub(crate) struct SpheresSpec {
     pub kind: S<String>,
     pub material: S<String>,
     pub radius: Option<S<f64>>,
-    pub radius_range: Option<S<[f64; 2]>>,
+    pub radius_range: Option<S<Arr<f64, 2>>>,
     pub center: Option<S<V3>>,
     #[serde(rename = "box")]
     pub region: Option<S<BoxSpec>>,

@@ -127,7 +127,7 @@ impl Builder<'_> {
                 let (r_min, r_max) = match (&sp.radius, &sp.radius_range) {
                     (Some(_), None) => (radius()?, radius()?),
                     (None, Some(rr)) => {
-                        let [a, b] = *rr.get_ref();
+                        let [a, b] = rr.get_ref().0;
                         let a = ctx.positive(&S::new(rr.span(), a), &key("radius_range"), "m")?;
                         let b = ctx.positive(&S::new(rr.span(), b), &key("radius_range"), "m")?;
                         if b < a {

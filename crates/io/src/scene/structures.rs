@@ -213,6 +213,20 @@ impl Builder<'_> {
             self.model.particles.pos[n] = place.apply_rigid(self.model.particles.pos[n]);
             self.model.particles.vel[n] = velocity;
         }
+        if let Some(o) = super::overlap::self_overlap(&self.model, id) {
+            return Err(ctx.at(
+                table,
+                "structures",
+                format!(
+                    "structure `{name}` overlaps itself at the start: its {} and {} are {:.3e} m \
+                     apart near [{:.4}, {:.4}, {:.4}], less than the sum of \
+                     their radii ({:.3e} m), and would push each other apart from the first step: \
+                     expected elements apart by at least 2 × node_radius (fewer segments or \
+                     cells, a larger pitch, or a smaller node_radius)",
+                    o.first, o.second, o.distance, o.at.x, o.at.y, o.at.z, o.radii
+                ),
+            ));
+        }
         self.structures.push(BuiltStructure { name, id, layout });
         Ok(())
     }
@@ -246,7 +260,10 @@ impl Builder<'_> {
                 _ => Err(ctx.at(
                     table.clone(),
                     "structures",
-                    format!("kind = \"{kind}\" with these counts has more than {MAX_STRUCTURE_NODES} nodes: expected fewer cells, rings, segments or subdivisions"),
+                    format!(
+                        "kind = \"{kind}\" with these counts has {} nodes, more than the {MAX_STRUCTURE_NODES} allowed: expected fewer cells, rings, segments or subdivisions",
+                        nodes.map_or("about 10^18 or more".to_string(), |n| n.to_string())
+                    ),
                 )),
             }
         };
@@ -312,11 +329,11 @@ impl Builder<'_> {
                 let u = dir(&st.u_dir, "u_dir", Vec3::x())?;
                 let v = dir(&st.v_dir, "v_dir", Vec3::y())?;
                 let size = req(&ctx, &st.size, table.clone(), "size", kind)?;
-                let [su, sv] = *size.get_ref();
+                let [su, sv] = size.get_ref().0;
                 let su = s * ctx.positive(&S::new(size.span(), su), &key("size"), "m")?;
                 let sv = s * ctx.positive(&S::new(size.span(), sv), &key("size"), "m")?;
                 let cells = req(&ctx, &st.cells, table.clone(), "cells", kind)?;
-                let [nu, nv] = *cells.get_ref();
+                let [nu, nv] = cells.get_ref().0;
                 let nu = ctx.count(&S::new(cells.span(), nu), &key("cells"), 1)?;
                 let nv = ctx.count(&S::new(cells.span(), nv), &key("cells"), 1)?;
                 too_big((nu + 1).checked_mul(nv + 1))?;
@@ -378,6 +395,9 @@ impl Builder<'_> {
                         format!("is {sub}: expected at most {}", builders::MAX_SHELL_SUBDIVISIONS),
                     ));
                 }
+                // V = F/2 + 2 nodes, F = F₀·4^subdivisions (F₀ = 20 or 8)
+                let faces = if base == ShellBase::Icosahedron { 20 } else { 8 };
+                too_big(Some(faces * 4usize.pow(sub as u32) / 2 + 2))?;
                 let c = v3(&st.center, "center", Vec3::zeros())? * s;
                 (
                     builders::sphere_shell(

@@ -71,6 +71,16 @@ CASES = {
     "series_unknown_quantity": (BASE + '\n[output]\nseries_every = 10\n\n[[output.series]]\nname = "e"\nquantity = "energie"  # <- error\n', ["`output.series.quantity`", "unknown quantity `energie`", "did you mean `energy`?"]),
     "threads_zero": ('[simulation]\nsteps = 10\nthreads = 0  # <- error\n', ["`simulation.threads`", "expected a whole number >= 1"]),
     "link_kinematics_typo": ('[simulation]\nsteps = 10\nlink_kinematics = "yadee"  # <- error\n', ["`simulation.link_kinematics`", "did you mean `yade`?"]),
+    # issue 13: input that cannot crash it
+    "non_ascii_in_unterminated_string": ('[simulation]\nsteps = 10\ndt = "a·b = 1  # <- error\n', ["`simulation.dt`"]),
+    "threads_too_many": ('[simulation]\nsteps = 10\nthreads = 100000  # <- error\n', ["`simulation.threads`", "is 100000", "expected a whole number in [1, 4096]"]),
+    "vector_four_components": ('[simulation]\nsteps = 10\ngravity = [0, 0, -9.81, 1]  # <- error\n', ["`simulation.gravity`", "invalid length 4", "expected three numbers [x, y, z]"]),
+    "pair_three_components": (SIM + MAT + '\n[[structures]]\nname = "m"\nkind = "membrane"\nmaterial = "steel"\nnode_radius = 0.001\nsize = [1, 1, 1]  # <- error\ncells = [4, 4]\n', ["`structures.size`", "invalid length 3", "expected two numbers [a, b]"]),
+    "dt_tiny_for_duration": ('[simulation]\ndt = 1e-300\nduration = 1  # <- error\n', ["`simulation.duration`", "is 1.000e300 steps", "expected at most 1e12"]),
+    "steps_too_many": ('[simulation]\nsteps = 9223372036854775807  # <- error\n', ["`simulation.steps`", "expected at most 1000000000000"]),
+    "shell_too_many_nodes": (SIM + MAT + '\n[[structures]]  # <- error\nname = "ball"\nkind = "sphere_shell"\nmaterial = "steel"\nnode_radius = 0.0001\nradius = 1.0\nsubdivisions = 9\n', ["`structures`", "2621442 nodes", "more than the 2000000 allowed"]),
+    "helix_pitch_zero": (SIM + MAT + '\n[[structures]]  # <- error\nname = "spring"\nkind = "helix"\nmaterial = "steel"\nnode_radius = 0.01\nradius = 0.1\npitch = 0\nturns = 2\n', ["`structures`", "structure `spring` overlaps itself at the start", "connection"]),
+    "chain_thicker_than_its_segments": (SIM + MAT + CHAIN.replace('[[structures]]', '[[structures]]  # <- error').replace('segments = 4', 'segments = 1000000'), ["`structures`", "structure `cable` overlaps itself at the start", "connection 0 (nodes 0–1)", "connection 2 (nodes 2–3)"]),
 }
 
 for name, (text, fragments) in CASES.items():
