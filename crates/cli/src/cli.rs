@@ -1,6 +1,7 @@
 //! The command line: subcommands and their options (clap derive).
 
 use clap::{Args, Parser, Subcommand};
+use flexdem_io::scene::MAX_THREADS;
 use std::path::PathBuf;
 
 /// flexdem: discrete element simulations of deformable structures (nets, cables, membranes,
@@ -28,7 +29,7 @@ pub enum Command {
     Validate(crate::commands::validate::ValidateArgs),
     /// Time the benchmark scenes (tube impact, PFacet membrane, sphere packing) with 1 and 2
     /// threads: a table of ms/step, ns per element-step, stage split, memory; CSV to
-    /// bench/results/latest.csv by default.
+    /// target/flexdem/bench/latest.csv by default (--update-committed: bench/results/).
     Bench(crate::commands::bench::BenchArgs),
 }
 
@@ -43,7 +44,7 @@ pub struct SceneArgs {
 #[derive(Debug, Args)]
 pub struct ExecOptions {
     /// Number of worker threads (default: the scene's `threads`, else one per core).
-    #[arg(long, value_name = "T", value_parser = clap::value_parser!(u64).range(1..=4096))]
+    #[arg(long, value_name = "T", value_parser = clap::value_parser!(u64).range(1..=MAX_THREADS as u64))]
     pub threads: Option<u64>,
     /// Write no output files (VTK, CSV, PNG); checkpoints are still written when asked for.
     #[arg(long)]

@@ -75,3 +75,22 @@ fn bad_options_exit_with_code_2() {
     let out = flexdem(&["bench", "--threads", "0"]);
     assert_eq!(out.status.code(), Some(2));
 }
+
+/// `flexdem bench` used to write over the committed `bench/results/latest.csv` by default: it
+/// now writes under `target/` of the current folder.
+#[test]
+fn bench_writes_its_csv_under_target_by_default() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_flexdem"))
+        .args(["bench", "--quick", "--scene", "packing", "--threads", "1"])
+        .current_dir(dir.path())
+        .output()
+        .unwrap();
+    let stdout = text(&out.stdout);
+    assert!(out.status.success(), "{stdout}\n{}", text(&out.stderr));
+    let csv = dir.path().join("target/flexdem/bench/latest.csv");
+    assert!(std::fs::read_to_string(csv).unwrap().contains("packing,200,"), "{stdout}");
+    assert!(stdout.contains("CSV: target/flexdem/bench/latest.csv"), "{stdout}");
+    let both = flexdem(&["bench", "--update-committed", "--csv", "x.csv"]);
+    assert_eq!(both.status.code(), Some(2), "--csv and --update-committed conflict");
+}

@@ -128,7 +128,7 @@ fn info_prints_counts_masses_and_time_step() {
     assert!(out.status.success(), "{}", stderr(&out));
     let text = stdout(&out);
     for expected in [
-        "particles: 337 (1 spheres, 336 nodes); connections: 976; PFacets: 640; walls: 0",
+        "particles: 337 (1 sphere, 336 nodes); connections: 976; PFacets: 640; walls: 0",
         "tube: 336 nodes, 976 connections, 640 PFacets, mass",
         "spheres: 1, mass 4.18879",
         "sphere: E = 1.000e8 Pa",
@@ -138,6 +138,35 @@ fn info_prints_counts_masses_and_time_step() {
         "run length: 0.28 s of simulated time = about ",
     ] {
         assert!(text.contains(expected), "missing `{expected}` in\n{text}");
+    }
+}
+
+/// A scene without spheres printed `mass -0.000000e0 kg` (the sum of nothing in f64 is -0).
+#[test]
+fn info_prints_zero_masses_without_a_sign() {
+    let scene = root().join("examples/cantilever.toml");
+    let out = flexdem(&["info".as_ref(), scene.as_os_str()]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = stdout(&out);
+    assert!(text.contains("(0 spheres, 11 nodes)"), "{text}");
+    assert!(text.contains("spheres: 0, mass 0.000000e0 kg"), "{text}");
+    assert!(!text.contains("-0.0"), "{text}");
+}
+
+/// With dt = "auto" the step count of a duration is known once the simulation is built:
+/// 10^300 s used to be accepted (and to run for ever).
+#[test]
+fn an_endless_duration_with_an_automatic_step_is_bad_input() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(root().join("examples/cantilever.toml")).unwrap();
+    let scene = dir.path().join("endless.toml");
+    std::fs::write(&scene, text.replace("duration = 20 ", "duration = 1e300 ")).unwrap();
+    for command in ["check", "run", "info"] {
+        let out = flexdem(&[command.as_ref(), scene.as_os_str()]);
+        let message = stderr(&out);
+        assert_eq!(out.status.code(), Some(2), "{command}: {message}");
+        assert!(message.contains("`simulation.duration`"), "{message}");
+        assert!(message.contains("expected at most 1e12"), "{message}");
     }
 }
 

@@ -33,3 +33,22 @@ fn validate_an_unknown_case_is_bad_input() {
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(stderr.contains("no_such_case") && stderr.contains("catenary"), "{stderr}");
 }
+
+/// `flexdem validate` used to write over the committed `validation/report/` by default: it
+/// now writes under `target/` of the current folder.
+#[test]
+fn validate_writes_under_target_by_default() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_flexdem"))
+        .args(["validate", "--quick", "--case", "chung_ooi_1"])
+        .current_dir(dir.path())
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{stdout}\n{}", String::from_utf8_lossy(&out.stderr));
+    assert!(dir.path().join("target/flexdem/validation/report.md").is_file(), "{stdout}");
+    assert!(stdout.contains("report: target/flexdem/validation/report.md"), "{stdout}");
+    assert!(!dir.path().join("validation").exists());
+    let both = flexdem(&["validate", "--update-committed", "--output", "x", "--case", "none"]);
+    assert_eq!(both.status.code(), Some(2), "--output and --update-committed conflict");
+}

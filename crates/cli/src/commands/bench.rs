@@ -41,7 +41,7 @@ pub struct BenchArgs {
     pub sizes: Vec<u64>,
     /// Worker thread counts, comma-separated; every case runs with each, the same steps.
     #[arg(long, value_name = "T,T,...", value_delimiter = ',', default_value = "1,2",
-          value_parser = clap::value_parser!(u64).range(1..=4096))]
+          value_parser = clap::value_parser!(u64).range(1..=flexdem_io::scene::MAX_THREADS as u64))]
     pub threads: Vec<u64>,
     /// Timed steps of every run (default: tube_impact 725, to 0.15 s of simulated time; the
     /// others as many as take about 1.5 s, 10 to 20000, decided by the first thread count).
@@ -51,18 +51,43 @@ pub struct BenchArgs {
     #[arg(long, value_name = "N")]
     pub warmup: Option<u64>,
     /// Where the CSV goes: a file (its folder is created), or `-` for standard output (the
-    /// table then goes to standard error).
-    #[arg(long, value_name = "FILE", default_value = "bench/results/latest.csv")]
-    pub csv: PathBuf,
+    /// table then goes to standard error). Default: target/flexdem/bench/latest.csv in the
+    /// current folder.
+    #[arg(long, value_name = "FILE", conflicts_with = "update_committed")]
+    pub csv: Option<PathBuf>,
+    /// Write the CSV over the committed results of the source tree
+    /// (bench/results/latest.csv), to update them.
+    #[arg(long)]
+    pub update_committed: bool,
     /// A smoke test of seconds: small sizes (200), 3 warm-up and 5 timed steps.
     #[arg(long)]
     pub quick: bool,
 }
 
+/// Default CSV file: under `target/` of the current folder.
+pub const DEFAULT_CSV: &str = "target/flexdem/bench/latest.csv";
+
+/// The committed results of the source tree this binary was built from.
+pub fn committed_csv() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../bench/results/latest.csv")
+}
+
+impl BenchArgs {
+    /// Where the CSV goes (`-`: standard output).
+    pub fn csv_path(&self) -> PathBuf {
+        match (&self.csv, self.update_committed) {
+            (Some(path), _) => path.clone(),
+            (None, true) => committed_csv(),
+            (None, false) => PathBuf::from(DEFAULT_CSV),
+        }
+    }
+}
+
 /// Runs the benchmarks, printing each row when done, then writes the CSV.
 pub fn bench(args: &BenchArgs) -> Result<Outcome, CliError> {
     let plan = plan(args)?;
-    let to_stdout = args.csv.as_os_str() == "-";
+    let csv_path = args.csv_path();
+    let to_stdout = csv_path.as_os_str() == "-";
     let mut out: Box<dyn std::io::Write> =
         if to_stdout { Box::new(std::io::stderr()) } else { Box::new(std::io::stdout()) };
     let mut print = |line: &str| {
@@ -76,8 +101,8 @@ pub fn bench(args: &BenchArgs) -> Result<Outcome, CliError> {
     if to_stdout {
         print!("{text}");
     } else {
-        write_csv(&args.csv, &text)?;
-        print(&format!("CSV: {}", args.csv.display()));
+        write_csv(&csv_path, &text)?;
+        print(&format!("CSV: {}", csv_path.display()));
     }
     if rows.iter().any(|r| r.same_as_first == Some(false)) {
         return Err(CliError::Run(

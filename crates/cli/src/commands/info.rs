@@ -4,6 +4,7 @@
 use super::{build_simulation, describe_run, read_scene};
 use crate::cli::SceneArgs;
 use crate::error::{CliError, Outcome};
+use crate::report::plural;
 use crate::summary::Counts;
 use flexdem_contact::Material;
 use flexdem_elements::ParticleKind;
@@ -35,6 +36,11 @@ fn material_names(path: &Path, materials: &[Material]) -> Vec<String> {
     } else {
         fallback()
     }
+}
+
+/// The sum of `masses`, 0 (not the -0 of `f64::sum`, printed `-0.000000e0`) when empty.
+fn total(masses: impl Iterator<Item = f64>) -> f64 {
+    masses.fold(0.0, |a, m| a + m)
 }
 
 /// A material in one line.
@@ -79,12 +85,17 @@ pub fn info(args: &SceneArgs) -> Result<Outcome, CliError> {
     let c = Counts::of(&sim);
     println!("scene: {}", args.scene.display());
     println!(
-        "particles: {} ({} spheres, {} nodes); connections: {}; PFacets: {}; walls: {}",
-        c.particles, c.spheres, c.nodes, c.connections, c.pfacets, c.walls
+        "particles: {} ({}, {}); connections: {}; PFacets: {}; walls: {}",
+        c.particles,
+        plural(c.spheres, "sphere"),
+        plural(c.nodes, "node"),
+        c.connections,
+        c.pfacets,
+        c.walls
     );
     println!("structures: {}", m.structures.len());
     for s in &m.structures {
-        let mass: f64 = (s.nodes.start..s.nodes.end).map(|i| p.mass[i as usize]).sum();
+        let mass = total((s.nodes.start..s.nodes.end).map(|i| p.mass[i as usize]));
         println!(
             "  {}: {} nodes, {} connections, {} PFacets, mass {:.6e} kg",
             s.name,
@@ -94,10 +105,10 @@ pub fn info(args: &SceneArgs) -> Result<Outcome, CliError> {
             mass
         );
     }
-    let sphere_mass: f64 =
-        (0..p.len()).filter(|&i| p.kind[i] == ParticleKind::Sphere).map(|i| p.mass[i]).sum();
+    let sphere_mass =
+        total((0..p.len()).filter(|&i| p.kind[i] == ParticleKind::Sphere).map(|i| p.mass[i]));
     println!("spheres: {}, mass {:.6e} kg", c.spheres, sphere_mass);
-    println!("total mass: {:.6e} kg", m.total_mass());
+    println!("total mass: {:.6e} kg", m.total_mass() + 0.0);
     println!("materials: {}", m.materials.len());
     for (name, material) in material_names(&args.scene, &m.materials).iter().zip(&m.materials) {
         println!("  {name}: {}", describe_material(material));

@@ -11,7 +11,7 @@ pub mod validate;
 
 use crate::error::CliError;
 use flexdem_integrate::Simulation;
-use flexdem_io::scene::{load_scene, RunLength, Scene};
+use flexdem_io::scene::{check_step_count, load_scene, RunLength, Scene};
 use std::path::{Path, PathBuf};
 
 /// Reads the scene file at `path`; its errors (file, line, column, key) are bad input.
@@ -30,6 +30,10 @@ pub fn build_simulation(scene: Scene) -> Result<(Simulation, SceneRest), CliErro
     for load in scene.loads {
         sim.add_load(load).map_err(|e| bad(&e))?;
     }
+    // with dt = "auto" the number of steps of a duration is known only now
+    check_step_count(scene.run, sim.dt()).map_err(|e| {
+        CliError::Input(format!("{}: `simulation.duration`: {e}", source.display()))
+    })?;
     let rest = SceneRest {
         run: scene.run,
         threads: scene.threads,
