@@ -11,10 +11,8 @@ use flexdem_io::mesh::read_mesh;
 enum Where {
     /// `file:line:`
     Line(usize),
-    /// `file: byte offset:`
+    /// `file: byte offset:` (also for the size and count of a binary file)
     Byte(usize),
-    /// `file:` only (a whole-file problem of a binary file).
-    File,
 }
 
 use Where::{Byte, Line};
@@ -85,11 +83,15 @@ const CASES: &[(&str, Where, &str)] = &[
     ("stl_ascii_two_vertices.stl", Line(6), "expected 3 vertices in a facet's loop, found 2"),
     ("stl_ascii_bad_number.stl", Line(6), "expected a number for coordinate z, found \"z\""),
     ("stl_ascii_empty_solid.stl", Line(2), "no facet found"),
-    ("stl_too_short.stl", Where::File, "too short for a binary STL: 4 bytes, expected at least 84"),
+    (
+        "stl_too_short.stl",
+        Byte(4),
+        "too short for a binary STL: the file ends after 4 bytes, expected at least 84",
+    ),
     (
         "stl_binary_wrong_size.stl",
-        Where::File,
-        "binary STL declares 12 triangles but the file holds 11",
+        Byte(80),
+        "binary STL declares 12 triangles (600 bytes of facets from byte 84) but the file holds 11",
     ),
     ("stl_binary_nan.stl", Byte(96), "triangle 1: expected a finite coordinate, found NaN"),
     ("msh_version3.msh", Line(2), "unsupported msh version 3.0 (supported: 2.2 and 4.1)"),
@@ -162,7 +164,6 @@ fn every_bad_mesh_gives_an_error_naming_the_file_and_the_place() {
         let prefix = match place {
             Line(line) => format!("{shown}:{line}: "),
             Byte(offset) => format!("{shown}: byte {offset}: "),
-            Where::File => format!("{shown}: "),
         };
         if !message.starts_with(&prefix) || !message.contains(fragment) {
             failures.push(format!("{name}: got {message:?}, expected {prefix:?} and {fragment:?}"));

@@ -180,7 +180,9 @@ fn huge_declared_counts_are_rejected_without_allocating() {
     let mut stl = vec![0u8; 80];
     stl.extend_from_slice(&u32::MAX.to_le_bytes());
     let message = read_stl(&stl, "huge.stl").unwrap_err().to_string();
-    assert!(message.contains("declares 4294967295 triangles but the file holds 0"), "{message}");
+    assert!(message.starts_with("huge.stl: byte 80: "), "{message}");
+    assert!(message.contains("declares 4294967295 triangles"), "{message}");
+    assert!(message.contains("but the file holds 0"), "{message}");
 
     // msh 4.1 binary: the first node block of the cube claims 2^60 nodes.
     let mut msh = valid_bytes("cube_v41_binary.msh");

@@ -67,3 +67,27 @@ fn a_missing_scene_file_is_an_io_error() {
     assert!(matches!(err, SceneError::Io { .. }));
     assert!(err.to_string().contains("/no/such/scene.toml"), "{err}");
 }
+
+/// A scene that is not UTF-8 used to fail with "stream did not contain valid UTF-8" and no
+/// place: the error now gives the line, column and byte of the first bad byte.
+#[test]
+fn invalid_utf8_is_located() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("latin1.toml");
+    std::fs::write(&path, b"[simulation]\nsteps = 10\n# caf\xe9\ndt = 1e-6\n").unwrap();
+    let message = load_scene(&path).unwrap_err().to_string();
+    let expected =
+        format!("{}:3:6: invalid UTF-8 at byte 29 (0xe9 0x0a 0x64 0x74)", path.display());
+    assert!(message.starts_with(&expected), "{message}");
+}
+
+/// The unterminated string with a non-ASCII character of the mutation fuzzer (`dt = "a·b = 1`)
+/// used to panic in the error formatter ("byte index is not a char boundary").
+#[test]
+fn non_ascii_in_a_broken_line_does_not_panic() {
+    for text in ["[simulation]\nsteps = 10\ndt = \"a·b = 1\n", "[simulation]\nsté·ps = 10\n", "·=·"]
+    {
+        let message = parse_scene(text, Path::new("s.toml")).unwrap_err().to_string();
+        assert!(message.starts_with("s.toml:"), "{message}");
+    }
+}

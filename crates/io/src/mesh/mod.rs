@@ -101,10 +101,6 @@ impl MeshError {
     pub(crate) fn binary(file: &str, offset: usize, message: impl Into<String>) -> Self {
         MeshError::Binary { file: file.to_owned(), offset, message: message.into() }
     }
-
-    pub(crate) fn file(file: &str, message: impl Into<String>) -> Self {
-        MeshError::File { file: file.to_owned(), message: message.into() }
-    }
 }
 
 /// Reads a triangle mesh, choosing the format from the extension (case-insensitive): `.msh`

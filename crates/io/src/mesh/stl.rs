@@ -42,11 +42,13 @@ fn declared_binary_count(bytes: &[u8]) -> Option<u32> {
 
 fn read_binary(bytes: &[u8], file: &str) -> Result<TriMesh, MeshError> {
     let Some(declared) = declared_binary_count(bytes) else {
-        return Err(MeshError::file(
+        return Err(MeshError::binary(
             file,
+            bytes.len(),
             format!(
                 "not an ASCII STL (does not start with \"solid\") and too short for a binary \
-                 STL: {} bytes, expected at least {BINARY_PREFIX_BYTES}",
+                 STL: the file ends after {} bytes, expected at least {BINARY_PREFIX_BYTES} (an \
+                 80-byte header and the triangle count)",
                 bytes.len()
             ),
         ));
@@ -56,13 +58,24 @@ fn read_binary(bytes: &[u8], file: &str) -> Result<TriMesh, MeshError> {
     let extra = data.len() % FACET_BYTES;
     if declared as usize != held || extra != 0 {
         let trailing = if extra == 0 { String::new() } else { format!(" and {extra} extra bytes") };
-        return Err(MeshError::file(
+        // the count is at byte 80; the facets start at byte 84, 50 bytes each
+        return Err(MeshError::binary(
             file,
-            format!("binary STL declares {declared} triangles but the file holds {held}{trailing}"),
+            HEADER_BYTES,
+            format!(
+                "binary STL declares {declared} triangles ({} bytes of facets from byte \
+                 {BINARY_PREFIX_BYTES}) but the file holds {held}{trailing} ({} bytes of facets)",
+                declared as u64 * FACET_BYTES as u64,
+                data.len()
+            ),
         ));
     }
     if held == 0 {
-        return Err(MeshError::file(file, "binary STL holds no triangle"));
+        return Err(MeshError::binary(
+            file,
+            HEADER_BYTES,
+            "binary STL declares 0 triangles: it holds no triangle",
+        ));
     }
     let mut vertices = Vec::with_capacity(3 * held);
     for (facet_index, facet) in data.chunks_exact(FACET_BYTES).enumerate() {

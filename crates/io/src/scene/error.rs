@@ -110,9 +110,9 @@ impl<'a> Ctx<'a> {
         let key = if !spanned.is_empty() && after.trim_start().starts_with('=') {
             clean_key(spanned)
         } else {
-            line.get(..col).and_then(|prefix| last_assignment(prefix).map(|eq| &prefix[..eq])).map_or(
-                String::new(),
-                |before| {
+            line.get(..col)
+                .and_then(|prefix| last_assignment(prefix).map(|eq| &prefix[..eq]))
+                .map_or(String::new(), |before| {
                     let before = before.trim_end();
                     // after the last character that cannot be part of a key (which may be
                     // several bytes long: `·`, `é`)
@@ -121,8 +121,7 @@ impl<'a> Ctx<'a> {
                         .rfind(|&(_, c)| !(c.is_alphanumeric() || "_-.\"'".contains(c)))
                         .map_or(0, |(i, c)| i + c.len_utf8());
                     clean_key(&before[from..])
-                },
-            )
+                })
         };
         match (header.is_empty(), key.is_empty()) {
             (_, true) => header,
