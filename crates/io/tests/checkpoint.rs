@@ -403,3 +403,34 @@ proptest! {
         }
     }
 }
+
+/// The mutation fuzzer (tests/input_fuzz.rs) made checkpoints, with a recomputed checksum,
+/// whose contacts held NaN weights or a normal that is not unit (a panic in the contact law
+/// of a debug build) and whose time-step counter was past the last step (an overflow): they
+/// are refused with the file's name.
+#[test]
+fn damaged_contacts_and_counters_are_refused() {
+    let mut sim = small_simulation();
+    while sim.snapshot().contacts.is_empty() {
+        sim.run(1).unwrap();
+    }
+    let damages: [fn(&mut Checkpoint); 5] = [
+        |c| c.snapshot.contacts[0].site2.weights[0] = f64::NAN,
+        |c| c.snapshot.contacts[0].site2.weights = [0.7, 0.7, 0.7],
+        |c| c.snapshot.contacts[0].state.normal *= 2.0,
+        |c| c.snapshot.contacts[0].params.kn = f64::INFINITY,
+        |c| c.snapshot.dt_updated_at = c.snapshot.steps + 5,
+    ];
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("damaged.ckp");
+    for (k, damage) in damages.iter().enumerate() {
+        let mut c = checkpoint_of(&sim);
+        damage(&mut c);
+        write_checkpoint(&path, &c).unwrap();
+        let err = restore_checkpoint(&path).map(|_| ()).unwrap_err();
+        assert!(matches!(&err, CheckpointError::Refused { .. }), "damage {k}: {err:?}");
+        assert!(err.to_string().contains("damaged.ckp"), "damage {k}: {err}");
+    }
+    write_checkpoint(&path, &checkpoint_of(&sim)).unwrap();
+    restore_checkpoint(&path).unwrap();
+}

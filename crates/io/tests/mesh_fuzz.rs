@@ -2,63 +2,16 @@
 //! never panics, and what it returns is a well-formed mesh (indices in range, finite
 //! coordinates).
 
-use std::path::PathBuf;
+mod support;
 
 use flexdem_geom::TriMesh;
-use flexdem_io::mesh::{read_gts, read_medit, read_msh, read_obj, read_stl, MeshError};
+use flexdem_io::mesh::{read_msh, read_stl, MeshError};
 use proptest::prelude::*;
-
-const VALID: [&str; 9] = [
-    "cube_v22_ascii.msh",
-    "cube_v22_binary.msh",
-    "cube_v41_ascii.msh",
-    "cube_v41_binary.msh",
-    "cube_ascii.stl",
-    "cube_binary.stl",
-    "cube.obj",
-    "cube.gts",
-    "cube.mesh",
-];
-
-fn valid_bytes(name: &str) -> Vec<u8> {
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../tests/data/meshes").join(name);
-    std::fs::read(path).unwrap()
-}
-
-type Reader = fn(&[u8], &str) -> Result<TriMesh, MeshError>;
-
-fn obj(bytes: &[u8], name: &str) -> Result<TriMesh, MeshError> {
-    read_obj(&String::from_utf8_lossy(bytes), name)
-}
-fn gts(bytes: &[u8], name: &str) -> Result<TriMesh, MeshError> {
-    read_gts(&String::from_utf8_lossy(bytes), name)
-}
-fn medit(bytes: &[u8], name: &str) -> Result<TriMesh, MeshError> {
-    read_medit(&String::from_utf8_lossy(bytes), name)
-}
-
-const READERS: [(&str, Reader); 5] =
-    [("msh", read_msh), ("stl", read_stl), ("obj", obj), ("gts", gts), ("mesh", medit)];
-
-fn reader_for(name: &str) -> Reader {
-    READERS.iter().find(|(ext, _)| name.ends_with(&format!(".{ext}"))).unwrap().1
-}
+use support::meshes::{reader_for, valid_bytes, well_formed, READERS, VALID};
 
 /// A result is either an error naming the file, or a mesh that is safe to use.
 fn check(result: Result<TriMesh, MeshError>, name: &str) -> Result<(), TestCaseError> {
-    match result {
-        Err(error) => prop_assert!(error.to_string().contains(name), "{error}"),
-        Ok(mesh) => {
-            prop_assert!(!mesh.triangles.is_empty());
-            for t in &mesh.triangles {
-                prop_assert!(t.iter().all(|&v| v < mesh.vertices.len()), "{t:?}");
-            }
-            for v in &mesh.vertices {
-                prop_assert!(v.iter().all(|x| x.is_finite()), "{v:?}");
-            }
-        }
-    }
-    Ok(())
+    well_formed(result, name).map_err(TestCaseError::fail)
 }
 
 /// One edit of a file's bytes.

@@ -44,6 +44,7 @@
 //! one call and names the file in its errors).
 
 mod atomic;
+mod check;
 
 use crate::output::OutputSettings;
 use crate::scene::RunLength;
@@ -117,8 +118,15 @@ impl Checkpoint {
             scene: self.scene,
             output_progress: self.output_progress,
         };
-        let sim = Simulation::from_snapshot(self.snapshot)
-            .map_err(|source| CheckpointError::Refused { path: None, source })?;
+        let refused = |source| CheckpointError::Refused { path: None, source };
+        check::check_snapshot(&self.snapshot).map_err(|value| {
+            refused(SimulationError::Setting {
+                what: "snapshot".into(),
+                value,
+                expected: "a snapshot written by Simulation::snapshot".into(),
+            })
+        })?;
+        let sim = Simulation::from_snapshot(self.snapshot).map_err(refused)?;
         Ok((sim, info))
     }
 }

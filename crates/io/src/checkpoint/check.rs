@@ -1,0 +1,95 @@
+//! Checks of the parts of a snapshot read from a file that the engine's own checks
+//! (`Simulation::from_snapshot`: the model, the settings, the links' topology, ids in range)
+//! leave to the file: the numbers of the contacts and of the loads, the step counters. A damaged checkpoint whose
+//! checksum was recomputed (the mutation fuzzer) can hold NaN weights or a non-unit normal in
+//! a contact, which the contact law assumes away.
+
+use flexdem_elements::virtual_sphere::{Feature, Site};
+use flexdem_geom::{Real, Vec3};
+use flexdem_integrate::{Contact, Load, Ramp, Snapshot};
+
+fn finite(v: &Vec3) -> bool {
+    v.iter().all(|x| x.is_finite())
+}
+
+/// What is wrong with site `site` of a contact, if anything.
+fn check_site(s: &Snapshot, site: &Site) -> Result<(), String> {
+    let model = &s.model;
+    let (used, in_range) = match site.feature {
+        Feature::Particle(i) => (1, (i as usize) < model.particles.len()),
+        Feature::Edge(c) => (2, (c as usize) < model.connections.len()),
+        Feature::Face(f) => (3, (f as usize) < model.pfacets.len()),
+        Feature::Wall(w) => (0, (w as usize) < model.walls.len()),
+    };
+    if !in_range {
+        return Err(format!("feature {:?} does not exist", site.feature));
+    }
+    let weights = &site.weights[..used];
+    let sum: Real = weights.iter().sum();
+    let weights_ok = weights.iter().all(|w| w.is_finite() && (-1e-9..=1.0 + 1e-9).contains(w))
+        && (used == 0 || (sum - 1.0).abs() <= 1e-6);
+    if !weights_ok {
+        return Err(format!(
+            "weights {:?} of {:?} are not barycentric",
+            site.weights, site.feature
+        ));
+    }
+    if site.nodes[..used].iter().any(|&n| (n as usize) >= model.particles.len()) {
+        return Err(format!("nodes {:?} of {:?} do not exist", site.nodes, site.feature));
+    }
+    if !(site.radius.is_finite() && site.radius >= 0.0) {
+        return Err(format!("radius {} of {:?}", site.radius, site.feature));
+    }
+    Ok(())
+}
+
+/// What is wrong with contact `c`, if anything.
+fn check_contact(s: &Snapshot, c: &Contact) -> Result<(), String> {
+    check_site(s, &c.site1)?;
+    check_site(s, &c.site2)?;
+    let p = &c.params;
+    let non_negative = |x: Real| x.is_finite() && x >= 0.0;
+    if !(non_negative(p.kn) && non_negative(p.ks) && non_negative(p.tan_phi)) {
+        return Err(format!("stiffness or friction {p:?}"));
+    }
+    let st = &c.state;
+    if !(finite(&st.shear_force) && finite(&st.normal) && finite(&c.point)) {
+        return Err("a shear force, normal or contact point that is not finite".into());
+    }
+    if (st.normal.norm_squared() - 1.0).abs() > 1e-6 {
+        return Err(format!("a normal of length {} (expected 1)", st.normal.norm()));
+    }
+    Ok(())
+}
+
+/// What is wrong with load `l`, if anything (its particle ids are the engine's to check).
+fn check_load(l: &Load) -> Result<(), String> {
+    if !(finite(&l.force) && finite(&l.torque)) {
+        return Err("a force or torque that is not finite".into());
+    }
+    match l.ramp {
+        Ramp::Linear { start, duration }
+            if !(start.is_finite() && start >= 0.0 && duration.is_finite() && duration > 0.0) =>
+        {
+            Err(format!("a ramp from {start} s over {duration} s"))
+        }
+        _ => Ok(()),
+    }
+}
+
+/// `Err(what)` when the contacts or loads of `s` hold numbers no run produces.
+pub(crate) fn check_snapshot(s: &Snapshot) -> Result<(), String> {
+    if s.dt_updated_at > s.steps {
+        return Err(format!(
+            "the time step was estimated at step {}, after the last step {}",
+            s.dt_updated_at, s.steps
+        ));
+    }
+    for (i, c) in s.contacts.iter().enumerate() {
+        check_contact(s, c).map_err(|e| format!("contact {i}: {e}"))?;
+    }
+    for (i, l) in s.loads.iter().enumerate() {
+        check_load(l).map_err(|e| format!("load {i}: {e}"))?;
+    }
+    Ok(())
+}

@@ -1,0 +1,3 @@
+//! Helpers shared by the integration tests of `flexdem-io`.
+
+pub mod meshes;
