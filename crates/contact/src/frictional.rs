@@ -40,12 +40,22 @@ pub struct FrictionalContact {
     pub normal: Vec3,
     /// Energy dissipated over the contact's life (only `friction` is used here).
     pub dissipated: Dissipation,
+    /// Overlap offset δ₀ ≥ 0 (m): the normal force is `kn·(δ − δ₀)` (model: "contacts born
+    /// deep"). 0 for a contact found when it first touched; set when a touching changes the
+    /// features that own it, so that the force it carries does not jump (the engine's
+    /// hand-over), and kept for the contact's life, which keeps the law conservative.
+    pub overlap_offset: Real,
 }
 
 impl FrictionalContact {
-    /// A fresh contact with no shear force, at the given (unit) normal.
+    /// A fresh contact with no shear force and no overlap offset, at the given (unit) normal.
     pub fn new(normal: Vec3) -> Self {
-        FrictionalContact { shear_force: Vec3::zeros(), normal, dissipated: Dissipation::default() }
+        FrictionalContact {
+            shear_force: Vec3::zeros(),
+            normal,
+            dissipated: Dissipation::default(),
+            overlap_offset: 0.0,
+        }
     }
 }
 
@@ -82,6 +92,9 @@ pub struct ContactForces {
 
 /// One step of a frictional contact (eq 1, 2, 7 with σ = 0):
 ///
+/// The overlap that makes force is `δ − δ₀` ([`FrictionalContact::overlap_offset`]); below,
+/// δ stands for it.
+///
 /// 1. δ ≤ 0: no force; the state is reset (no shear history, normal updated).
 /// 2. Rotate the stored Fs onto the new tangent plane: the minimal rotation taking the previous
 ///    normal to the new one, then a twist of spin·dt about n (exact Rodrigues, |Fs| preserved).
@@ -96,7 +109,8 @@ pub fn update_frictional_contact(
 ) -> ContactForces {
     let n = kin.normal;
     debug_assert!((n.norm_squared() - 1.0).abs() < 1e-9, "normal must be unit");
-    if kin.overlap.is_nan() || kin.overlap <= 0.0 {
+    let overlap = kin.overlap - state.overlap_offset;
+    if overlap.is_nan() || overlap <= 0.0 {
         state.shear_force = Vec3::zeros();
         state.normal = n;
         return ContactForces::default();
@@ -105,7 +119,7 @@ pub fn update_frictional_contact(
     let v = kin.relative_velocity;
     let us_dot = v - n * n.dot(&v);
     let trial = rotated - us_dot * (params.ks * dt);
-    let fn_ = params.kn * kin.overlap;
+    let fn_ = params.kn * overlap;
     let limit = (fn_ * params.tan_phi).max(0.0);
     let trial_mag = trial.norm();
     let (fs, sliding, friction) = if trial_mag > limit {

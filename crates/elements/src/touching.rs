@@ -9,7 +9,9 @@
 //! feature, an edge shared by two PFacets is one feature.
 //!
 //! Candidate `j` **dominates** candidate `i` when `j`'s two elements contain both of `i`'s
-//! features (so `j` saw every point `i` stands for) and either
+//! features (so `j` saw every point `i` stands for; for a structure touching itself, in
+//! either order, since the same touching is found by the pair of elements on each side and
+//! by the mirror pair) and either
 //! - `j` is closer by more than a tolerance: `i`'s point is not where the distance to the
 //!   structure is locally smallest (a sphere over a face also "touches" the neighbouring
 //!   edges and nodes: those candidates are dominated by the face's), or
@@ -116,14 +118,19 @@ fn tie_tolerance(a: &Candidate, b: &Candidate) -> Real {
 }
 
 /// Rank of a candidate among ties: total feature dimension first, then the smaller feature
-/// pair. Higher is preferred.
+/// pair (in either order: a touching of a structure with itself is found from both sides).
+/// Higher is preferred.
 fn outranks(j: &Candidate, i: &Candidate) -> Option<bool> {
     let dim = |c: &Candidate| c.site1.feature.dimension() + c.site2.feature.dimension();
     let (dj, di) = (dim(j), dim(i));
     if dj != di {
         return Some(dj > di);
     }
-    let (kj, ki) = ((j.site1.feature, j.site2.feature), (i.site1.feature, i.site2.feature));
+    let key = |c: &Candidate| {
+        let (a, b) = (c.site1.feature, c.site2.feature);
+        (a.min(b), a.max(b))
+    };
+    let (kj, ki) = (key(j), key(i));
     if kj != ki {
         return Some(kj < ki);
     }
@@ -139,10 +146,13 @@ pub fn dominates(
     index_i: usize,
     topology: &Topology<'_>,
 ) -> bool {
-    if index_j == index_i
-        || !topology.element_contains(j.element1, i.candidate.site1.feature)
-        || !topology.element_contains(j.element2, i.candidate.site2.feature)
-    {
+    let (f1, f2) = (i.candidate.site1.feature, i.candidate.site2.feature);
+    let holds = |e1, e2| {
+        topology.element_contains(j.element1, e1) && topology.element_contains(j.element2, e2)
+    };
+    // a structure touching itself is found from both sides: (element with f1, element with
+    // f2) and the mirror pair; both are the same touching
+    if index_j == index_i || !(holds(f1, f2) || holds(f2, f1)) {
         return false;
     }
     let (cj, ci) = (&j.candidate, &i.candidate);

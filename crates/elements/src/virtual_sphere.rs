@@ -192,23 +192,37 @@ pub struct ContactGeometry {
     pub spin_about_normal: Real,
 }
 
-/// Contact geometry of two spheres (centres `s1.center`, `s2.center`, radii `r1`, `r2`).
+/// Contact geometry of two spheres (centres `s1.center`, `s2.center`, radii `r1`, `r2`),
+/// keeping the side the contact was made on (model: crossing elements).
 ///
-/// When the centres coincide to round-off (skeletons crossing), the normal is
-/// `fallback_normal` (the previous step's normal, or the element's face normal): the
-/// direction is then a choice, never NaN.
+/// With `d = P2 − P1` and `n₀ = previous_normal` (the normal of the contact's last update, or
+/// for a new contact the one it was made with):
+/// - `d·n₀ > 0` (body 2's centre on the side of `n₀`, as when the contact was made):
+///   `n = d/|d|`, `δ = r1 + r2 − |d|` (eq 1's overlap);
+/// - `d·n₀ ≤ 0` (the skeletons have met or passed through each other, where `d/|d|` is
+///   undefined or points the wrong way): `n = n₀`, `δ = r1 + r2 − d·n₀ ≥ r1 + r2`, the
+///   overlap measured along the kept normal, so that the force keeps pushing body 2 back to
+///   the side it came from, and grows the further through it has gone.
+///
+/// Both branches give `δ = r1 + r2` where `d = 0`. YADE has no such rule: its normal is
+/// `d/|d|` and flips when two elements cross.
 pub fn contact_geometry(
     s1: &VirtualSphere,
     r1: Real,
     s2: &VirtualSphere,
     r2: Real,
-    fallback_normal: &Vec3,
+    previous_normal: &Vec3,
 ) -> ContactGeometry {
     let d = s2.center - s1.center;
     let dist = d.norm();
     let scale = r1 + r2 + s1.center.abs().max() + s2.center.abs().max();
-    let normal = if dist > 1e-14 * scale { d / dist } else { *fallback_normal };
-    let overlap = r1 + r2 - dist;
+    let along = d.dot(previous_normal);
+    let (normal, separation) = if dist > 1e-14 * scale && along > 0.0 {
+        (d / dist, dist)
+    } else {
+        (*previous_normal, along)
+    };
+    let overlap = r1 + r2 - separation;
     let point = s1.center + normal * (r1 - 0.5 * overlap);
     let v1 = s1.velocity + s1.angular_velocity.cross(&(point - s1.center));
     let v2 = s2.velocity + s2.angular_velocity.cross(&(point - s2.center));

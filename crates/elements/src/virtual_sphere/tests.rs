@@ -107,8 +107,12 @@ proptest! {
         let c2 = c1 + dir.normalize() * 0.15;
         let s1 = VirtualSphere { center: c1, velocity: v + omega.cross(&c1), angular_velocity: omega };
         let s2 = VirtualSphere { center: c2, velocity: v + omega.cross(&c2), angular_velocity: omega };
-        let g = contact_geometry(&s1, 0.1, &s2, 0.1, &Vec3::z());
+        // the previous normal on the same side as the centres: the usual geometry
+        let side = (dir.normalize() + Vec3::new(0.3, -0.2, 0.1)).normalize();
+        prop_assume!(side.dot(&dir) > 0.0);
+        let g = contact_geometry(&s1, 0.1, &s2, 0.1, &side);
         prop_assert!((g.overlap - 0.05).abs() < 1e-12);
+        prop_assert!((g.normal - dir.normalize()).norm() < 1e-12);
         prop_assert!(g.relative_velocity.norm() <= 1e-12 * (v.norm() + 4.0 * omega.norm() + 1.0));
         prop_assert!((g.spin_about_normal - omega.dot(&g.normal)).abs() < 1e-12 * (1.0 + omega.norm()));
     }
@@ -138,6 +142,29 @@ fn coincident_centres_use_the_fallback_normal() {
     assert_eq!(g.normal, Vec3::y());
     assert!((g.overlap - 0.3).abs() < 1e-15);
     assert!(g.point.iter().all(|x| x.is_finite()));
+}
+
+/// Two skeletons that have passed through each other (body 2's centre behind body 1's along
+/// the contact's previous normal) keep that normal, and the overlap is measured along it:
+/// larger than r1 + r2, growing the further through they are, continuous at d = 0.
+#[test]
+fn crossed_centres_keep_the_side_the_contact_was_made_on() {
+    let at = |z: Real| VirtualSphere {
+        center: Vec3::new(0.3, 0.0, z),
+        velocity: Vec3::zeros(),
+        angular_velocity: Vec3::zeros(),
+    };
+    let n0 = Vec3::new(0.0, 0.6, 0.8);
+    let s1 = at(0.0);
+    for (z, expected) in [(-0.01, 0.3 + 0.008), (-0.05, 0.3 + 0.04), (-1e-300, 0.3)] {
+        let g = contact_geometry(&s1, 0.1, &at(z), 0.2, &n0);
+        assert_eq!(g.normal, n0);
+        assert!((g.overlap - expected).abs() < 1e-15, "z {z}: {}", g.overlap);
+    }
+    // on the side it was made on, the ordinary normal and overlap
+    let g = contact_geometry(&s1, 0.1, &at(0.25), 0.2, &n0);
+    assert!((g.normal - Vec3::z()).norm() < 1e-15);
+    assert!((g.overlap - 0.05).abs() < 1e-15);
 }
 
 #[test]
