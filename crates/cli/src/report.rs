@@ -87,41 +87,45 @@ pub fn text(summary: &Summary) -> String {
         &mut t.elastic_contacts,
         &mut t.gravity_work,
         &mut t.load_work,
+        &mut t.boundary_work,
+        &mut t.contact_births,
         &mut t.damping,
         &mut t.links_dissipated,
         &mut t.friction,
+        &mut t.contact_releases,
     ] {
         *x += 0.0;
     }
     let _ = writeln!(
         s,
         "energy (J): kinetic {:.4e} + {:.4e} (rotation), elastic links {:.4e}, contacts {:.4e}; \
-         work of gravity {:.4e}, of loads {:.4e}; dissipated by damping {:.4e}, links {:.4e}, friction {:.4e}",
+         work of gravity {:.4e}, of loads {:.4e}, of boundaries {:.4e}; late contact births {:.4e}; \
+         dissipated by damping {:.4e}, links {:.4e}, friction {:.4e}; released by contacts {:.4e}",
         t.kinetic_translation,
         t.kinetic_rotation,
         t.elastic_links,
         t.elastic_contacts,
         t.gravity_work,
         t.load_work,
+        t.boundary_work,
+        t.contact_births,
         t.damping,
         t.links_dissipated,
-        t.friction
+        t.friction,
+        t.contact_releases
     );
-    match e.relative_balance_error {
-        Some(rel) => {
-            let _ = writeln!(
-                s,
-                "energy balance: {:.6e} J (initial {:.6e} J), error {:.2e} of the energy scale {:.3e} J",
-                e.balance,
-                e.initial_balance.unwrap_or(0.0),
-                rel,
-                e.scale
-            );
+    let _ = writeln!(
+        s,
+        "energy balance: {:.6e} J (initial {:.6e} J), error {:.2e} of the energy scale {:.3e} J{}",
+        e.balance,
+        e.initial_balance,
+        e.relative_balance_error + 0.0,
+        e.scale,
+        match e.contacts_born_deep {
+            0 => String::new(),
+            n => format!("; {} found late", plural(n as usize, "contact")),
         }
-        None => {
-            let _ = writeln!(s, "energy balance: {:.6e} J (initial value unknown)", e.balance);
-        }
-    }
+    );
     match &summary.output {
         Some(o) => {
             let _ = writeln!(s, "output in {}:", o.directory.display());

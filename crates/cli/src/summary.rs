@@ -125,14 +125,16 @@ pub struct EnergySummary {
     pub stored: f64,
     /// Stored energy minus work in plus dissipated (constant when the balance closes).
     pub balance: f64,
-    /// The balance at the start of the simulation (None when unknown: a resumed run whose
-    /// scene file cannot be read).
-    pub initial_balance: Option<f64>,
+    /// The balance at the start of the simulation (kept in checkpoints).
+    pub initial_balance: f64,
     /// The energy scale the error is measured against: the largest of the initial balance,
-    /// the stored energy, the works and the dissipated energy.
+    /// the stored energy, the works and the energy taken out, over the whole run.
     pub scale: f64,
-    /// (balance − initial balance) / scale.
-    pub relative_balance_error: Option<f64>,
+    /// (balance − initial balance) / scale: what the engine's energy watch checks.
+    pub relative_balance_error: f64,
+    /// First touches found with more overlap than one step of approach explains (their
+    /// energy is `contact_births`).
+    pub contacts_born_deep: u64,
 }
 
 /// Where the output went.
@@ -175,28 +177,18 @@ impl Counts {
 }
 
 impl EnergySummary {
-    /// The energy of `sim`, its balance measured against `initial_balance`.
-    pub fn of(sim: &Simulation, initial_balance: Option<f64>) -> EnergySummary {
+    /// The energy of `sim` and its balance, as the engine's energy watch measures it.
+    pub fn of(sim: &Simulation) -> EnergySummary {
         let e = *sim.energy();
-        let dissipated = e.damping + e.links_dissipated + e.friction;
-        let scale = [
-            initial_balance.unwrap_or(0.0).abs(),
-            e.stored().abs(),
-            e.gravity_work.abs(),
-            e.load_work.abs(),
-            dissipated.abs(),
-        ]
-        .into_iter()
-        .fold(0.0, f64::max);
-        let relative_balance_error =
-            initial_balance.map(|b0| if scale > 0.0 { (e.balance() - b0) / scale } else { 0.0 });
+        let watch = sim.energy_watch();
         EnergySummary {
             terms: e,
             stored: e.stored(),
             balance: e.balance(),
-            initial_balance,
-            scale,
-            relative_balance_error,
+            initial_balance: watch.initial_balance,
+            scale: watch.scale,
+            relative_balance_error: sim.relative_balance_error(),
+            contacts_born_deep: sim.contacts_born_deep(),
         }
     }
 }

@@ -24,7 +24,9 @@ use serde::{Deserialize, Serialize};
 /// One contact: where it sits on each body, its constants and its state.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Contact {
-    /// Site on body 1 (a wall, or the element with the lower collidable index).
+    /// Site on body 1 (a wall, or the body with the smaller (owner, feature): a free sphere
+    /// before a structure, a structure before one of higher id, and in a structure touching
+    /// itself the smaller feature).
     pub site1: Site,
     /// Site on body 2.
     pub site2: Site,
@@ -46,6 +48,18 @@ impl Contact {
     pub fn key(&self) -> (Feature, Feature) {
         (self.site1.feature, self.site2.feature)
     }
+}
+
+/// What the contacts made at one detection added to or took from the energy balance (see
+/// [`Contacts::settle_births`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct BirthReport {
+    /// First touches found with more overlap than one step of approach explains.
+    pub born_deep: u64,
+    /// Energy those late births put in (J).
+    pub born_energy: Real,
+    /// Elastic energy given up by contacts that ended or were handed over while holding it (J).
+    pub released: Real,
 }
 
 /// A touching found this step, before it is matched with the contacts of the last step.
@@ -96,6 +110,7 @@ struct Scratch {
     previous: Vec<Contact>,
     taken: Vec<bool>,
     ended: Vec<usize>,
+    by_owners: Vec<usize>,
 }
 
 const SPHERE_OWNER: u64 = 0;
@@ -117,6 +132,64 @@ fn material(model: &Model, e: Element) -> u32 {
         Element::Particle(i) => model.particles.material[i as usize],
         Element::Connection(k) => model.connections[k as usize].material,
         Element::PFacet(k) => model.pfacets[k as usize].material,
+    }
+}
+
+/// The largest distance from a site's centre to its nodes: 0 on a particle, up to the length
+/// of an edge or the size of a face.
+fn extent(site: &Site, pos: &[Vec3]) -> Real {
+    let n = site.node_count();
+    if n < 2 {
+        return 0.0;
+    }
+    let nodes = &site.nodes[..n];
+    let centre: Vec3 = nodes.iter().zip(&site.weights).map(|(&i, &w)| pos[i as usize] * w).sum();
+    nodes.iter().map(|&i| (pos[i as usize] - centre).norm()).fold(0.0, Real::max)
+}
+
+/// Whether contact `new` sees the touching of `old` (same owners) from the other side: its
+/// body 1 on the other's body 2. Only a structure touching itself can be seen so (bodies are
+/// ordered by owner, see [`oriented`]); the sides are matched by the nodes the sites share,
+/// then by the nearer site centres.
+fn mirrored(new: &Contact, old: &Contact, pos: &[Vec3]) -> bool {
+    if new.owners.0 != new.owners.1 {
+        return false;
+    }
+    fn nodes(s: &Site) -> &[u32] {
+        &s.nodes[..s.node_count()]
+    }
+    let shared = |a: &Site, b: &Site| nodes(a).iter().filter(|n| nodes(b).contains(n)).count();
+    let same = shared(&new.site1, &old.site1) + shared(&new.site2, &old.site2);
+    let cross = shared(&new.site1, &old.site2) + shared(&new.site2, &old.site1);
+    if same != cross {
+        return cross > same;
+    }
+    let centre = |s: &Site| -> Vec3 {
+        nodes(s).iter().zip(&s.weights).map(|(&i, &w)| pos[i as usize] * w).sum()
+    };
+    let (n1, n2, o1, o2) =
+        (centre(&new.site1), centre(&new.site2), centre(&old.site1), centre(&old.site2));
+    (n1 - o2).norm() + (n2 - o1).norm() < (n1 - o1).norm() + (n2 - o2).norm()
+}
+
+/// A touching turned so that body 1 is the one with the smaller (owner, feature): the
+/// contact of a touching then has the same key and the same body 1 whichever pair of
+/// elements reported it (a structure touching itself is seen from both sides).
+fn oriented(t: Touching) -> Touching {
+    let c = &t.candidate;
+    if (t.owners.1, c.site2.feature) >= (t.owners.0, c.site1.feature) {
+        return t;
+    }
+    Touching {
+        candidate: Candidate {
+            site1: c.site2,
+            site2: c.site1,
+            center1: c.center2,
+            center2: c.center1,
+            distance: c.distance,
+        },
+        materials: (t.materials.1, t.materials.0),
+        owners: (t.owners.1, t.owners.0),
     }
 }
 
@@ -226,8 +299,16 @@ impl Contacts {
 
     /// Finds this step's touchings among the collider's candidate pairs, applies the
     /// one-contact-per-touching rule, and matches them with the last step's contacts (keeping
-    /// their state, or handing it over to the feature a touching moved to).
-    pub fn detect(&mut self, model: &Model, adj: &Adjacency, collider: &Collider) {
+    /// their state, or handing it over to the feature a touching moved to, see
+    /// [`Contacts::settle_births`]). `dt` is the step about to be taken (to tell a contact
+    /// found late from one found on time).
+    pub fn detect(
+        &mut self,
+        model: &Model,
+        adj: &Adjacency,
+        collider: &Collider,
+        dt: Real,
+    ) -> BirthReport {
         let p = &model.particles;
         // 1. exact closest features of every candidate pair; keep the touching ones. The
         // exact kernels cost up to a microsecond (triangle–triangle) and most candidate pairs
@@ -296,11 +377,11 @@ impl Contacts {
                             }
                         }
                     }
-                    Some(Touching {
+                    Some(oriented(Touching {
                         candidate: ci.candidate,
                         materials: (material(model, ci.element1), material(model, ci.element2)),
                         owners: (owner(model, ci.element1), owner(model, ci.element2)),
-                    })
+                    }))
                 },
             )
             .collect_into_vec(&mut scratch.survivors);
@@ -368,39 +449,148 @@ impl Contacts {
             };
             self.list.push(c);
         }
-        // handover: a new contact takes the state of an ended one of the same owners, the
-        // nearest within the contact's size (a touching that moved to the next feature);
-        // the ended ones are sorted by owners, so each new contact looks only at its own
+        self.fresh = fresh;
+        self.settle_births(model, dt)
+    }
+
+    /// What the contacts made at this detection inherit, so that no energy comes from a
+    /// contact's birth or hand-over (model: "contacts born deep"). With `old` the last step's
+    /// contacts, each new contact (a new pair of features) is one of:
+    ///
+    /// - **a hand-over**: an ended contact of the same owners (a free sphere, a structure or a
+    ///   wall on each side) whose point is the nearest within the contact's size: the touching
+    ///   moved to other features (face to edge to face, edge to faces at a fold). The new
+    ///   contact takes its shear force, normal and dissipation, and an overlap offset
+    ///   `δ₀ = δ_new − (δ_old − δ₀_old)·kn_old/kn_new` (≥ 0), `δ_old` the ended contact's
+    ///   overlap at the current positions: the normal force is continuous across the switch
+    ///   and so is the elastic energy. Where `δ₀` would be negative (the new features overlap
+    ///   less than the force needs) it is 0 and the energy the new contact cannot hold is
+    ///   released (counted in `released`);
+    /// - **a split**: no ended contact to take over, but a contact of the same owners within
+    ///   the contact's size existed at the last step, and the new one is found deeper than
+    ///   the approach of one step explains (`δ > u·dt`, `u` the approach speed): the touching
+    ///   spread onto more features (a surface turning from convex to concave under a
+    ///   sphere). It is made with no force, `δ₀ = δ`, and the neighbour's normal;
+    /// - **a first touch**: full force. Found late (`δ > u·dt`: it passed a step with
+    ///   overlap unseen) it is counted as born deep, and the energy its late birth adds to the
+    ///   balance (with the leapfrog's kinetic energy, `½·kn·δ·(δ − u·dt)`) is counted in
+    ///   `born_energy`.
+    ///
+    /// Ended contacts that no new contact takes over release the elastic energy they would
+    /// hold at the current positions (`released`): nothing when they ended by separating.
+    fn settle_births(&mut self, model: &Model, dt: Real) -> BirthReport {
+        let p = &model.particles;
+        let k = Kinematics { pos: &p.pos, vel: &p.vel, ang_vel: &p.ang_vel };
+        let scratch = &mut self.scratch;
+        let old = &scratch.previous;
+        let taken = &mut scratch.taken;
+        let mut report = BirthReport::default();
+        // the ended ones, sorted by owners, so that each new contact looks only at its own
         let ended = &mut scratch.ended;
         ended.clear();
         ended.extend((0..old.len()).filter(|&o| !taken[o]));
         ended.sort_unstable_by_key(|&o| (old[o].owners, o));
-        for &n in &fresh {
+        // every old contact by owners, for splits
+        let by_owners = &mut scratch.by_owners;
+        by_owners.clear();
+        by_owners.extend(0..old.len());
+        by_owners.sort_unstable_by_key(|&o| (old[o].owners, o));
+        for &n in &self.fresh {
             let c = &self.list[n];
-            let reach = c.site1.radius + c.site2.radius;
+            // the closest features of two elements may jump across an element in one step
+            // (nearly parallel edges or faces): a touching is looked for within the elements'
+            // extent
+            let reach = c.site1.radius
+                + c.site2.radius
+                + extent(&c.site1, &p.pos)
+                + extent(&c.site2, &p.pos);
             // both are contact points: the old one at its last update, the new one estimated
             // by new_contact
             let point = c.point;
-            let start = ended.partition_point(|&o| old[o].owners < c.owners);
-            let best = ended[start..]
-                .iter()
-                .take_while(|&&o| old[o].owners == c.owners)
-                .filter(|&&o| !taken[o])
-                .map(|&o| (o, (old[o].point - point).norm()))
-                .filter(|&(_, d)| d <= reach)
-                .min_by(|a, b| a.1.total_cmp(&b.1));
-            if let Some((o, _)) = best {
+            let owners = c.owners;
+            let near = |list: &[usize], taken: Option<&[bool]>| {
+                let start = list.partition_point(|&o| old[o].owners < owners);
+                list[start..]
+                    .iter()
+                    .take_while(|&&o| old[o].owners == owners)
+                    .filter(|&&o| taken.is_none_or(|t| !t[o]))
+                    .map(|&o| (o, (old[o].point - point).norm()))
+                    .filter(|&(_, d)| d <= reach)
+                    .min_by(|a, b| a.1.total_cmp(&b.1))
+            };
+            if let Some((o, distance)) = near(ended, Some(taken)) {
                 taken[o] = true;
-                let state = old[o].state.clone();
-                self.list[n].state = state;
+                let before = &old[o];
+                let (_, _, g_old) = geometry(model, &k, before);
+                let carried = (g_old.overlap - before.state.overlap_offset).max(0.0);
+                let force = before.params.kn * carried;
+                let c = &mut self.list[n];
+                let normal = c.state.normal;
+                c.state = before.state.clone();
+                c.state.overlap_offset = 0.0;
+                if distance <= c.site1.radius + c.site2.radius {
+                    // the same touching on other features: it keeps the side it was made on
+                    if mirrored(c, before, &p.pos) {
+                        c.state.normal = -c.state.normal;
+                        c.state.shear_force = -c.state.shear_force;
+                    }
+                } else {
+                    // the closest features jumped across an element: the new ones' normal,
+                    // the shear force turned onto its plane by the law
+                    c.state.normal = normal;
+                    if mirrored(c, before, &p.pos) {
+                        c.state.shear_force = -c.state.shear_force;
+                    }
+                }
+                let (_, _, g) = geometry(model, &k, c);
+                let wanted = force / c.params.kn;
+                let offset = g.overlap - wanted;
+                // the ended contact is continued on its last closest points, which lag the
+                // motion by a second-order amount (a sphere sliding by dx over a face at
+                // height h: dx²/2h): a touching that moved on continuously keeps its offset
+                let continuous = (offset - before.state.overlap_offset).abs()
+                    <= 1e-6 * (c.site1.radius + c.site2.radius)
+                    && before.params.kn == c.params.kn;
+                if continuous {
+                    c.state.overlap_offset = before.state.overlap_offset;
+                } else if offset >= 0.0 {
+                    c.state.overlap_offset = offset;
+                } else {
+                    let held = g.overlap.max(0.0);
+                    report.released += 0.5 * force * carried - 0.5 * c.params.kn * held * held;
+                }
+                continue;
             }
-        }
-        for (o, c) in old.iter().enumerate() {
-            if !taken[o] {
-                self.ended_dissipation += c.state.dissipated.total();
+            let (_, _, g) = geometry(model, &k, c);
+            let approach = -g.relative_velocity.dot(&g.normal);
+            let late = g.overlap - approach * dt;
+            if !(late > 1e-12 * reach) {
+                continue; // found on time
             }
+            if near(by_owners, None).is_some() {
+                // a split: made with no force, on its own normal
+                self.list[n].state.overlap_offset = g.overlap.max(0.0);
+                continue;
+            }
+            report.born_deep += 1;
+            report.born_energy += 0.5 * c.params.kn * g.overlap * late;
         }
-        self.fresh = fresh;
+        for &o in ended.iter() {
+            if taken[o] {
+                continue;
+            }
+            let c = &old[o];
+            self.ended_dissipation += c.state.dissipated.total();
+            let (_, _, g) = geometry(model, &k, c);
+            let held = (g.overlap - c.state.overlap_offset).max(0.0);
+            report.released += 0.5 * c.params.kn * held * held
+                + if c.params.ks > 0.0 {
+                    0.5 * c.state.shear_force.norm_squared() / c.params.ks
+                } else {
+                    0.0
+                };
+        }
+        report
     }
 
     /// Updates every contact's forces (in parallel) and adds the node loads to `force` and
@@ -462,8 +652,7 @@ fn new_contact(model: &Model, t: &Touching) -> Contact {
         Feature::Wall(_) => (c.site2.radius, c.site2.radius),
         _ => (c.site1.radius, c.site2.radius),
     };
-    let d = c.center2 - c.center1;
-    let normal = if d.norm() > 0.0 { d.normalize() } else { Vec3::z() };
+    let normal = birth_normal(model, c);
     Contact {
         site1: c.site1,
         site2: c.site2,
@@ -472,6 +661,57 @@ fn new_contact(model: &Model, t: &Touching) -> Contact {
         state: FrictionalContact::new(normal),
         forces: ContactForces::default(),
         point: c.center1 + normal * c.site1.radius,
+    }
+}
+
+/// The normal a new contact is made with: from centre 1 to centre 2 (eq 1's geometry). Where
+/// the centres coincide (the skeletons met or crossed before the contact was found) that
+/// direction does not exist; then the face normal of a PFacet site, or the common normal of
+/// two edges, or the relative velocity, turned against the approach (`n·(v2 − v1) ≤ 0`), so
+/// that the force pushes each body back the way it came.
+fn birth_normal(model: &Model, c: &Candidate) -> Vec3 {
+    let d = c.center2 - c.center1;
+    let scale = c.site1.radius + c.site2.radius + c.center1.abs().max() + c.center2.abs().max();
+    if d.norm() > 1e-14 * scale {
+        return d.normalize();
+    }
+    let p = &model.particles;
+    let k = Kinematics { pos: &p.pos, vel: &p.vel, ang_vel: &p.ang_vel };
+    let v = virtual_sphere(&c.site2, &k).velocity - virtual_sphere(&c.site1, &k).velocity;
+    let axis = |site: &Site| -> Vec3 {
+        match site.feature {
+            Feature::Edge(_) => p.pos[site.nodes[1] as usize] - p.pos[site.nodes[0] as usize],
+            _ => Vec3::zeros(),
+        }
+    };
+    let face = |site: &Site| -> Vec3 {
+        match site.feature {
+            Feature::Face(_) => {
+                let [a, b, c] = site.nodes.map(|i| p.pos[i as usize]);
+                (b - a).cross(&(c - a))
+            }
+            _ => Vec3::zeros(),
+        }
+    };
+    let tiny = |x: &Vec3| x.norm() <= 1e-14 * scale * scale;
+    let mut n = face(&c.site1);
+    if tiny(&n) {
+        n = face(&c.site2);
+    }
+    if tiny(&n) {
+        n = axis(&c.site1).cross(&axis(&c.site2));
+    }
+    if tiny(&n) {
+        n = -v;
+    }
+    if n.norm() == 0.0 || !n.iter().all(|x| x.is_finite()) {
+        return Vec3::z();
+    }
+    let n = n.normalize();
+    if n.dot(&v) > 0.0 {
+        -n
+    } else {
+        n
     }
 }
 

@@ -78,4 +78,31 @@ pub enum SimulationError {
         /// The last critical step estimate.
         critical_dt: Real,
     },
+    /// The energy balance error passed the limit: the run made (or lost) energy it cannot
+    /// account for.
+    #[error(
+        "the energy balance is off by {error:+.3e} of the energy scale {scale:.4e} J \
+         ({change:+.4e} J) at step {step} (t = {time:.6e} s), beyond the limit {limit:.1e}: \
+         the run {verb} energy it cannot account for. {culprit}. Use a smaller time step \
+         (dt = auto with a smaller safety factor), or widen the check with \
+         `energy_tolerance` in [simulation] (\"off\" switches it off)",
+        verb = if *error > 0.0 { "created" } else { "lost" }
+    )]
+    EnergyBalance {
+        /// The step.
+        step: u64,
+        /// The time.
+        time: Real,
+        /// (B(t) − B(0)) / scale.
+        error: Real,
+        /// The limit it passed.
+        limit: Real,
+        /// B(t) − B(0) (J).
+        change: Real,
+        /// The energy scale (J).
+        scale: Real,
+        /// Where the energy is: the contact and the link holding the most elastic energy,
+        /// the fastest particle.
+        culprit: String,
+    },
 }

@@ -1,8 +1,10 @@
 //! Leapfrog integration with Cundall's non-viscous damping (model.md §4, YADE's
 //! NewtonIntegrator for spherical bodies).
 //!
-//! Velocities live at half steps: `v(t + dt/2) = v(t − dt/2) + dt·a`, then
-//! `x(t + dt) = x(t) + dt·v(t + dt/2)`; the same for the angular velocity, and the orientation
+//! Velocities live at half steps: `v(t + dt/2) = v(t − dt₀/2) + h·a` with `h = (dt₀ + dt)/2`
+//! (`dt₀` the step before, `dt` this one: with a constant step, `h = dt`; when the step changes,
+//! the kick spans the time between the two half steps, which keeps the scheme second order and
+//! the energy balance free of a jump at each change), then `x(t + dt) = x(t) + dt·v(t + dt/2)`; the same for the angular velocity, and the orientation
 //! turns by `rot(ω·dt)`, renormalized. Per component, the acceleration (gravity included) is
 //! damped as `aᵢ ← aᵢ·(1 − λ·sign(aᵢ·(vᵢ + aᵢ·dt/2)))`. A blocked DOF keeps its velocity
 //! component (0, or an imposed value) and feels neither force nor gravity.
@@ -30,8 +32,22 @@ pub struct StepWork {
     pub kinetic_rotation: Real,
     /// Work done by gravity from t to t + dt: `m·g·v(t + dt/2)·dt` over free DOFs (J).
     pub gravity: Real,
-    /// Energy removed by Cundall damping from t to t + dt (J, ≥ 0).
+    /// Energy removed by Cundall damping in the kick at t, the part that the kinetic energy at
+    /// t already shows: `Σ m·(a_free − a)·v(t − dt/2)·h/2` (J). The other half of the kick's
+    /// damping, with v(t + dt/2), shows in the kinetic energy at t + dt: `damping_next`. (With
+    /// the kinetic energy `½m·v(t − dt/2)·v(t + dt/2)`, this split closes the balance at every
+    /// step, where the mean velocity booked at once leaves an offset of half a kick.)
     pub damping: Real,
+    /// The second half of the kick's damping, `Σ m·(a_free − a)·v(t + dt/2)·h/2` (J).
+    pub damping_next: Real,
+    /// Work of the supports that impose the velocity of blocked DOFs, whose reaction is minus
+    /// the node's force: the half of `−Σ (F·v + τ·ω)` at t over the step before,
+    /// `·dt₀/2` (J; 0 for DOFs held at rest). The force at t works half over the step before
+    /// and half over the step after (the trapezoidal rule, which the kinetic energy
+    /// `½m·v(t − dt/2)·v(t + dt/2)` matches).
+    pub boundary: Real,
+    /// The other half: `−Σ (F·v + τ·ω)·dt/2`, over the step after (J).
+    pub boundary_next: Real,
 }
 
 impl std::ops::AddAssign for StepWork {
@@ -40,6 +56,9 @@ impl std::ops::AddAssign for StepWork {
         self.kinetic_rotation += o.kinetic_rotation;
         self.gravity += o.gravity;
         self.damping += o.damping;
+        self.damping_next += o.damping_next;
+        self.boundary += o.boundary;
+        self.boundary_next += o.boundary_next;
     }
 }
 
@@ -57,16 +76,19 @@ fn damped(a: Real, v: Real, lambda: Real, dt: Real) -> Real {
 }
 
 /// Advances every particle by one leapfrog step of `dt` under `force` and `torque` (per
-/// particle), gravity and damping `lambda` ∈ [0, 1). Returns the work of gravity and the
-/// energy taken by damping, from mid-step velocities.
+/// particle), gravity and damping `lambda` ∈ [0, 1), after a step of `previous` (dt₀: the
+/// kick spans `(dt₀ + dt)/2`, see the module documentation). Returns the work of gravity and of the
+/// supports of blocked DOFs and the energy taken by damping, from mid-step velocities.
 pub fn leapfrog_step(
     p: &mut Particles,
     force: &[Vec3],
     torque: &[Vec3],
     gravity: &Vec3,
     lambda: Real,
+    previous: Real,
     dt: Real,
 ) -> StepWork {
+    let kick = 0.5 * (previous + dt);
     let parts: Vec<StepWork> = (
         p.pos.par_chunks_mut(CHUNK),
         p.vel.par_chunks_mut(CHUNK),
@@ -89,16 +111,19 @@ pub fn leapfrog_step(
                     }
                     let v0 = vel[i][k];
                     let a_free = f[i][k] / mass[i] + gravity[k];
-                    let a = damped(a_free, v0, lambda, dt);
-                    let v1 = v0 + a * dt;
+                    let a = damped(a_free, v0, lambda, kick);
+                    let v1 = v0 + a * kick;
                     vel[i][k] = v1;
                     work.kinetic_translation += 0.5 * mass[i] * v0 * v1;
                     work.gravity += mass[i] * gravity[k] * v1 * dt;
-                    work.damping += mass[i] * (a_free - a) * 0.5 * (v0 + v1) * dt;
+                    work.damping += mass[i] * (a_free - a) * 0.5 * v0 * kick;
+                    work.damping_next += mass[i] * (a_free - a) * 0.5 * v1 * kick;
                 }
                 for k in 0..3 {
                     if b.contains(Dofs::translation(k)) {
                         work.kinetic_translation += 0.5 * mass[i] * vel[i][k] * vel[i][k];
+                        work.boundary -= 0.5 * f[i][k] * vel[i][k] * previous;
+                        work.boundary_next -= 0.5 * f[i][k] * vel[i][k] * dt;
                     }
                 }
                 pos[i] += vel[i] * dt;
@@ -109,15 +134,18 @@ pub fn leapfrog_step(
                         }
                         let w0 = ang[i][k];
                         let a_free = t[i][k] / inertia[i];
-                        let a = damped(a_free, w0, lambda, dt);
-                        let w1 = w0 + a * dt;
+                        let a = damped(a_free, w0, lambda, kick);
+                        let w1 = w0 + a * kick;
                         ang[i][k] = w1;
                         work.kinetic_rotation += 0.5 * inertia[i] * w0 * w1;
-                        work.damping += inertia[i] * (a_free - a) * 0.5 * (w0 + w1) * dt;
+                        work.damping += inertia[i] * (a_free - a) * 0.5 * w0 * kick;
+                        work.damping_next += inertia[i] * (a_free - a) * 0.5 * w1 * kick;
                     }
                     for k in 0..3 {
                         if b.contains(Dofs::rotation(k)) {
                             work.kinetic_rotation += 0.5 * inertia[i] * ang[i][k] * ang[i][k];
+                            work.boundary -= 0.5 * t[i][k] * ang[i][k] * previous;
+                            work.boundary_next -= 0.5 * t[i][k] * ang[i][k] * dt;
                         }
                     }
                     let turn = ang[i] * dt;
@@ -185,7 +213,7 @@ mod tests {
         let n = 1000;
         let zero = vec![Vec3::zeros(); 1];
         for _ in 0..n {
-            leapfrog_step(&mut p, &zero, &zero, &g, 0.0, dt);
+            leapfrog_step(&mut p, &zero, &zero, &g, 0.0, dt, dt);
         }
         let t = dt * n as Real;
         // the leapfrog with v(−dt/2) = v0 gives x = v0 t + g t²/2 + g dt t/2
@@ -202,7 +230,7 @@ mod tests {
         p.vel[0] = Vec3::new(0.0, 0.0, 0.5);
         let f = vec![Vec3::new(1.0, 0.0, 100.0)];
         let t = vec![Vec3::new(5.0, 5.0, 5.0)];
-        leapfrog_step(&mut p, &f, &t, &Vec3::new(0.0, 0.0, -9.81), 0.0, 0.01);
+        leapfrog_step(&mut p, &f, &t, &Vec3::new(0.0, 0.0, -9.81), 0.0, 0.01, 0.01);
         assert_eq!(p.vel[0][2], 0.5);
         assert!((p.pos[0][2] - 0.005).abs() < 1e-15);
         assert!((p.vel[0][0] - 0.01).abs() < 1e-15);
@@ -214,10 +242,10 @@ mod tests {
         let mut p = one_particle(1.0);
         let f = vec![Vec3::new(1.0, 0.0, 0.0)];
         let zero = vec![Vec3::zeros()];
-        let w = leapfrog_step(&mut p, &f, &zero, &Vec3::zeros(), 0.2, 0.1);
+        let w = leapfrog_step(&mut p, &f, &zero, &Vec3::zeros(), 0.2, 0.1, 0.1);
         // accelerating along the motion: a·(1 − λ)
         assert!((p.vel[0][0] - 0.08).abs() < 1e-15);
-        assert!(w.damping > 0.0);
+        assert!(w.damping + w.damping_next > 0.0);
     }
 
     #[test]
@@ -226,7 +254,7 @@ mod tests {
         p.ang_vel[0] = Vec3::new(0.0, 0.0, std::f64::consts::PI);
         let zero = vec![Vec3::zeros()];
         for _ in 0..200 {
-            leapfrog_step(&mut p, &zero, &zero, &Vec3::zeros(), 0.0, 0.005);
+            leapfrog_step(&mut p, &zero, &zero, &Vec3::zeros(), 0.0, 0.005, 0.005);
         }
         // half a turn about z
         let x = p.ori[0] * Vec3::x();

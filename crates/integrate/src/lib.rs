@@ -4,6 +4,7 @@
 mod broad_phase;
 mod collider;
 mod contacts;
+mod culprit;
 mod error;
 mod integrator;
 mod links;
@@ -15,11 +16,11 @@ mod timers;
 
 pub use broad_phase::BroadPhase;
 pub use collider::Collider;
-pub use contacts::{Contact, Contacts};
+pub use contacts::{BirthReport, Contact, Contacts};
 pub use error::SimulationError;
 pub use integrator::{kinetic_energy, leapfrog_step, StepWork};
 pub use links::{LinkEvents, LinkUpdate, Links};
-pub use settings::{Load, Ramp, Settings, TimeStep};
-pub use simulation::{Control, Energy, ForceHook, Simulation, Snapshot};
+pub use settings::{Load, Ramp, Settings, TimeStep, DEFAULT_ENERGY_TOLERANCE};
+pub use simulation::{Control, Energy, EnergyWatch, ForceHook, PendingWork, Simulation, Snapshot};
 pub use time_step::{critical_step_from_stiffness, p_wave_time_step, StiffnessSums};
 pub use timers::{Stage, Timers};

@@ -39,7 +39,14 @@ pub struct Settings {
     pub verlet_factor: Real,
     /// Recompute the automatic time step every this many steps (and when contacts appear).
     pub time_step_interval: u64,
+    /// The run stops when the energy balance error, relative to the energy scale, passes this
+    /// (see `EnergyWatch`); `None` switches the watch off.
+    pub energy_tolerance: Option<Real>,
 }
+
+/// The default of [`Settings::energy_tolerance`]: 5 % of the energy scale. Far above what a
+/// sound run reaches (1e-3 and below in the validation cases) and far below a blow-up.
+pub const DEFAULT_ENERGY_TOLERANCE: Real = 0.05;
 
 impl Default for Settings {
     fn default() -> Self {
@@ -50,6 +57,7 @@ impl Default for Settings {
             link_mode: LinkKinematicsMode::Beam,
             verlet_factor: 0.5,
             time_step_interval: 100,
+            energy_tolerance: Some(DEFAULT_ENERGY_TOLERANCE),
         }
     }
 }
@@ -77,6 +85,15 @@ impl Settings {
         }
         if !(self.verlet_factor > 0.0 && self.verlet_factor.is_finite()) {
             return bad("verlet factor", self.verlet_factor.to_string(), "a positive number");
+        }
+        if let Some(tol) = self.energy_tolerance {
+            if !(tol > 0.0 && tol.is_finite()) {
+                return bad(
+                    "energy tolerance",
+                    tol.to_string(),
+                    "a positive fraction of the energy scale (or off)",
+                );
+            }
         }
         if self.time_step_interval == 0 {
             return bad("time step interval", "0".into(), "at least 1 step");

@@ -44,8 +44,6 @@ pub struct Job {
     pub summary: Option<PathBuf>,
     /// No progress bar and no report.
     pub quiet: bool,
-    /// Energy balance at the start of the simulation, if known.
-    pub initial_balance: Option<f64>,
 }
 
 /// The flag set by Ctrl-C, with the handler installed on first use. A second Ctrl-C while
@@ -206,7 +204,7 @@ fn execute_on_worker(mut job: Job) -> Result<Outcome, CliError> {
             candidate_pairs: job.sim.collider.pairs.len(),
             builds: job.sim.collider.builds,
         },
-        energy: EnergySummary::of(&job.sim, job.initial_balance),
+        energy: EnergySummary::of(&job.sim),
         tracked: tracked_values(&job.output_settings, &job.sim),
         output: output_summary,
         checkpoint: checkpoint_written,

@@ -4,19 +4,9 @@ use super::execute::{execute, reached, writes_something, Job};
 use super::{absolute, describe_run, set_threads, to_usize};
 use crate::cli::ResumeArgs;
 use crate::error::{CliError, Outcome};
-use flexdem_integrate::kinetic_energy;
 use flexdem_io::checkpoint::read_checkpoint;
 use flexdem_io::output::Output;
-use flexdem_io::scene::{load_scene, RunLength};
-use std::path::Path;
-
-/// The energy balance at the start of the simulation of `scene` (its initial kinetic
-/// energy), or None if the scene file cannot be read any more.
-fn initial_balance(scene: &Path) -> Option<f64> {
-    let scene = load_scene(scene).ok()?;
-    let (translation, rotation) = kinetic_energy(&scene.model.particles);
-    Some(translation + rotation)
-}
+use flexdem_io::scene::RunLength;
 
 /// Resumes the run of `args.checkpoint_file`.
 pub fn resume(args: &ResumeArgs) -> Result<Outcome, CliError> {
@@ -56,7 +46,6 @@ pub fn resume(args: &ResumeArgs) -> Result<Outcome, CliError> {
     } else {
         None
     };
-    let initial = initial_balance(&checkpoint.scene);
     let checkpoint_path = absolute(args.exec.checkpoint.as_deref().unwrap_or(path));
     if !args.exec.quiet {
         eprintln!(
@@ -70,13 +59,6 @@ pub fn resume(args: &ResumeArgs) -> Result<Outcome, CliError> {
             },
             if in_use == 1 { "" } else { "s" }
         );
-        if initial.is_none() {
-            eprintln!(
-                "note: the scene file {} cannot be read: the energy balance is reported \
-                 without its initial value",
-                checkpoint.scene.display()
-            );
-        }
     }
     execute(Job {
         sim,
@@ -89,6 +71,5 @@ pub fn resume(args: &ResumeArgs) -> Result<Outcome, CliError> {
         checkpoint_every: args.exec.checkpoint_every,
         summary: args.exec.summary.clone(),
         quiet: args.exec.quiet,
-        initial_balance: initial,
     })
 }

@@ -13,7 +13,6 @@ pub fn run(args: &RunArgs) -> Result<Outcome, CliError> {
     let threads = to_usize(args.exec.threads)?.or(scene.threads);
     let in_use = set_threads(threads)?;
     let (sim, mut rest) = build_simulation(scene)?;
-    let initial_balance = Some(sim.energy().balance());
     if let Some(dir) = &args.output {
         rest.output.directory = dir.clone();
     }
@@ -57,6 +56,5 @@ pub fn run(args: &RunArgs) -> Result<Outcome, CliError> {
         checkpoint_every: args.exec.checkpoint_every,
         summary: args.exec.summary.clone(),
         quiet: args.exec.quiet,
-        initial_balance,
     })
 }

@@ -58,7 +58,7 @@ use std::path::{Path, PathBuf};
 pub const CHECKPOINT_MAGIC: [u8; 8] = *b"FLXDMCKP";
 
 /// The format version this build writes and reads (see the module documentation).
-pub const CHECKPOINT_VERSION: u32 = 1;
+pub const CHECKPOINT_VERSION: u32 = 2;
 
 /// Size of the header before the payload: magic, version, length, checksum (bytes).
 pub const CHECKPOINT_HEADER_LEN: usize = 24;

@@ -4,7 +4,7 @@
 
 use super::error::{unknown_name, Ctx, SceneError};
 use super::schema::{
-    BoundarySpec, Dt, LoadSpec, MaterialSpec, SceneFile, SimulationSpec, WallSpec, S,
+    BoundarySpec, Dt, LoadSpec, MaterialSpec, SceneFile, SimulationSpec, Tolerance, WallSpec, S,
 };
 use super::spheres::SphereGroup;
 use super::structures::BuiltStructure;
@@ -227,6 +227,22 @@ impl Builder<'_> {
         }
         if let Some(n) = &sim.time_step_interval {
             settings.time_step_interval = ctx.count(n, &key("time_step_interval"), 1)? as u64;
+        }
+        if let Some(t) = &sim.energy_tolerance {
+            settings.energy_tolerance = match *t.get_ref() {
+                Tolerance::Off => None,
+                Tolerance::Value(v) if v > 0.0 && v.is_finite() => Some(v),
+                Tolerance::Value(v) => {
+                    return Err(ctx.at(
+                        t.span(),
+                        &key("energy_tolerance"),
+                        format!(
+                            "is {v}: expected \"off\" or a positive fraction of the energy \
+                             scale (e.g. 0.05)"
+                        ),
+                    ))
+                }
+            };
         }
         settings.validate().map_err(|e| ctx.at(spec.span(), "simulation", e.to_string()))?;
         Ok((settings, run, threads))

@@ -93,6 +93,43 @@ pub(crate) struct SimulationSpec {
     pub link_kinematics: Option<S<String>>,
     pub verlet_factor: Option<S<f64>>,
     pub time_step_interval: Option<S<i64>>,
+    pub energy_tolerance: Option<S<Tolerance>>,
+}
+
+/// `energy_tolerance = "off"` or a fraction of the energy scale.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Tolerance {
+    Off,
+    Value(f64),
+}
+
+impl<'de> Deserialize<'de> for Tolerance {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct ToleranceVisitor;
+        impl Visitor<'_> for ToleranceVisitor {
+            type Value = Tolerance;
+            fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                f.write_str("\"off\" or a fraction of the energy scale (e.g. 0.05)")
+            }
+            fn visit_str<E: de::Error>(self, v: &str) -> Result<Tolerance, E> {
+                if v == "off" {
+                    Ok(Tolerance::Off)
+                } else {
+                    Err(E::invalid_value(Unexpected::Str(v), &self))
+                }
+            }
+            fn visit_f64<E: de::Error>(self, v: f64) -> Result<Tolerance, E> {
+                Ok(Tolerance::Value(v))
+            }
+            fn visit_i64<E: de::Error>(self, v: i64) -> Result<Tolerance, E> {
+                Ok(Tolerance::Value(v as f64))
+            }
+            fn visit_u64<E: de::Error>(self, v: u64) -> Result<Tolerance, E> {
+                Ok(Tolerance::Value(v as f64))
+            }
+        }
+        d.deserialize_any(ToleranceVisitor)
+    }
 }
 
 /// `dt = "auto"` or a number of seconds.
