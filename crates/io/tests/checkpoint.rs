@@ -414,8 +414,9 @@ fn damaged_contacts_and_counters_are_refused() {
     while sim.snapshot().contacts.is_empty() {
         sim.run(1).unwrap();
     }
-    let damages: [fn(&mut Checkpoint); 5] = [
+    let damages: [fn(&mut Checkpoint); 6] = [
         |c| c.snapshot.contacts[0].site2.weights[0] = f64::NAN,
+        |c| c.snapshot.contacts[0].state.overlap_offset = -1.0,
         |c| c.snapshot.contacts[0].site2.weights = [0.7, 0.7, 0.7],
         |c| c.snapshot.contacts[0].state.normal *= 2.0,
         |c| c.snapshot.contacts[0].params.kn = f64::INFINITY,

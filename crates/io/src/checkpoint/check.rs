@@ -59,6 +59,9 @@ fn check_contact(s: &Snapshot, c: &Contact) -> Result<(), String> {
     if (st.normal.norm_squared() - 1.0).abs() > 1e-6 {
         return Err(format!("a normal of length {} (expected 1)", st.normal.norm()));
     }
+    if !non_negative(st.overlap_offset) {
+        return Err(format!("an overlap offset of {} m", st.overlap_offset));
+    }
     Ok(())
 }
 
