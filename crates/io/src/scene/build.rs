@@ -25,6 +25,8 @@ pub(crate) struct Builder<'a> {
     pub materials: Vec<(String, MaterialId)>,
     pub structures: Vec<BuiltStructure>,
     pub groups: Vec<SphereGroup>,
+    /// The memory available to the simulation (bytes), if known.
+    pub available: Option<u64>,
 }
 
 /// Builds the scene described by `file`.
@@ -37,6 +39,7 @@ pub(crate) fn build(file: SceneFile, ctx: Ctx<'_>, source: &Path) -> Result<Scen
         materials: Vec::new(),
         structures: Vec::new(),
         groups: Vec::new(),
+        available: super::memory::available_memory(),
     };
     let (settings, run, threads) = b.simulation(&file.simulation)?;
     for (name, spec) in &file.materials {
@@ -44,10 +47,10 @@ pub(crate) fn build(file: SceneFile, ctx: Ctx<'_>, source: &Path) -> Result<Scen
     }
     // the simulation's memory, estimated as each part is added (the model is a fraction of
     // it), refused at the part that does not fit
-    let available = super::memory::available_memory();
     let fits =
         |b: &Builder<'_>, span: std::ops::Range<usize>, key: &str| match super::memory::too_large(
-            &b.model, available,
+            &b.model,
+            b.available,
         ) {
             Some(message) => Err(ctx.at(span, key, message)),
             None => Ok(()),

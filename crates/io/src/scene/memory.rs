@@ -54,6 +54,29 @@ pub(crate) fn too_large(model: &Model, available: Option<u64>) -> Option<String>
     })
 }
 
+/// The message refusing a structure of about `elements` elements (nodes, connections and
+/// PFacets, from its counts) before it is built, when with the `base` bytes of the scene so
+/// far ([`estimate_memory`]) it would exceed `available` bytes.
+pub(crate) fn too_large_to_build(
+    base: u64,
+    elements: u64,
+    available: Option<u64>,
+) -> Option<String> {
+    let available = available?;
+    let need = base.saturating_add(elements.saturating_mul(BYTES_PER_ELEMENT));
+    (need > available).then(|| {
+        format!(
+            "this structure has about {elements} elements (nodes, connections and PFacets): \
+             with the rest of the scene the simulation would need about {} of memory ({} B \
+             per element), more than the {} available: expected fewer cells, rings, segments \
+             or subdivisions",
+            bytes(need),
+            BYTES_PER_ELEMENT,
+            bytes(available)
+        )
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -76,6 +99,11 @@ mod tests {
         assert!(message.contains("needs about 2 MiB"), "{message}");
         assert!(message.contains("more than the 1 MiB available"), "{message}");
         assert_eq!(bytes(3 << 30), "3.0 GiB");
+        let base = estimate_memory(&model);
+        let message = too_large_to_build(base, 10_000, Some(8 << 20)).unwrap();
+        assert!(message.contains("about 10000 elements"), "{message}");
+        assert!(message.contains("need about 12 MiB"), "{message}");
+        assert!(too_large_to_build(base, 1000, Some(8 << 20)).is_none());
     }
 
     #[test]

@@ -4,6 +4,7 @@
 
 use super::build::Builder;
 use super::error::{unknown_name, Ctx, SceneError};
+use super::memory;
 use super::placement::Placement;
 use super::schema::{PlacementSpec, StructureSpec, S, V3};
 use crate::mesh::read_mesh;
@@ -254,9 +255,22 @@ impl Builder<'_> {
         let cnt = |v: &Option<S<i64>>, k: &str, min: i64| -> Result<usize, SceneError> {
             ctx.count(req(&ctx, v, table.clone(), k, kind)?, &key(k), min)
         };
+        // memory: the scene so far, and elements per node of this kind (a polyline has a
+        // connection per node, a net two or three, a PFacet surface three and two PFacets)
+        let (base, available) = (memory::estimate_memory(&self.model), self.available);
+        let per_node: u64 = match kind {
+            "chain" | "helix" => 2,
+            "net" => 4,
+            _ => 6,
+        };
         let too_big = |nodes: Option<usize>| -> Result<(), SceneError> {
             match nodes {
-                Some(n) if n <= MAX_STRUCTURE_NODES => Ok(()),
+                Some(n) if n <= MAX_STRUCTURE_NODES => {
+                    match memory::too_large_to_build(base, n as u64 * per_node, available) {
+                        Some(message) => Err(ctx.at(table.clone(), "structures", message)),
+                        None => Ok(()),
+                    }
+                }
                 _ => Err(ctx.at(
                     table.clone(),
                     "structures",
@@ -423,6 +437,12 @@ impl Builder<'_> {
                 let mesh = read_mesh(&path).map_err(|e| {
                     ctx.at(file.span(), &key("file"), format!("cannot read the mesh: {e}"))
                 })?;
+                let (v, f) = (mesh.vertices.len() as u64, mesh.triangles.len() as u64);
+                if let Some(message) =
+                    memory::too_large_to_build(base, v + f + f * 3 / 2, available)
+                {
+                    return Err(ctx.at(file.span(), &key("file"), message));
+                }
                 let mesh = TriMesh {
                     vertices: mesh.vertices.iter().map(|v| v * s).collect(),
                     triangles: mesh.triangles,
