@@ -45,6 +45,8 @@ pub struct FrictionalContact {
     /// features that own it, so that the force it carries does not jump (the engine's
     /// hand-over), and kept for the contact's life, which keeps the law conservative.
     pub overlap_offset: Real,
+    /// Normal force of the last update (N): what the contact carries when it ends.
+    pub normal_force: Real,
 }
 
 impl FrictionalContact {
@@ -55,6 +57,7 @@ impl FrictionalContact {
             normal,
             dissipated: Dissipation::default(),
             overlap_offset: 0.0,
+            normal_force: 0.0,
         }
     }
 }
@@ -113,6 +116,7 @@ pub fn update_frictional_contact(
     if overlap.is_nan() || overlap <= 0.0 {
         state.shear_force = Vec3::zeros();
         state.normal = n;
+        state.normal_force = 0.0;
         return ContactForces::default();
     }
     let rotated = transport_tangent(state.shear_force, state.normal, n, kin.spin_about_normal * dt);
@@ -130,6 +134,7 @@ pub fn update_frictional_contact(
     };
     state.shear_force = fs;
     state.normal = n;
+    state.normal_force = fn_;
     let dissipated = Dissipation { friction, ..Default::default() };
     state.dissipated += dissipated;
     ContactForces {

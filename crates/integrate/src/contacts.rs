@@ -56,9 +56,10 @@ impl Contact {
 pub struct BirthReport {
     /// First touches found with more overlap than one step of approach explains.
     pub born_deep: u64,
-    /// Energy those late births put in (J).
+    /// Energy put in by contacts that started or ended within the step before (J): see
+    /// [`Contacts::settle_births`]; positive for contacts found late.
     pub born_energy: Real,
-    /// Elastic energy given up by contacts that ended or were handed over while holding it (J).
+    /// Elastic energy given up by contacts that ended while holding it (J).
     pub released: Real,
 }
 
@@ -133,6 +134,19 @@ fn material(model: &Model, e: Element) -> u32 {
         Element::Connection(k) => model.connections[k as usize].material,
         Element::PFacet(k) => model.pfacets[k as usize].material,
     }
+}
+
+/// What a contact entering the balance at this step moves it by (see
+/// [`Contacts::settle_births`]): `½·kn·δ·δ₋`, `δ` its overlap (less its offset) with geometry
+/// `g`, `δ₋ = δ − u·dt` the overlap one step before from its approach speed `u` over the step
+/// `dt` just done.
+fn birth_jump(c: &Contact, g: &ContactGeometry, dt: Real) -> Real {
+    let overlap = g.overlap - c.state.overlap_offset;
+    if !(overlap > 0.0) {
+        return 0.0;
+    }
+    let approach = -g.relative_velocity.dot(&g.normal);
+    0.5 * c.params.kn * overlap * (overlap - approach * dt)
 }
 
 /// The largest distance from a site's centre to its nodes: 0 on a particle, up to the length
@@ -454,30 +468,36 @@ impl Contacts {
     }
 
     /// What the contacts made at this detection inherit, so that no energy comes from a
-    /// contact's birth or hand-over (model: "contacts born deep"). With `old` the last step's
-    /// contacts, each new contact (a new pair of features) is one of:
+    /// contact's birth or hand-over (model: "contacts born deep"), and what the contacts that
+    /// started or ended between the last step and this one move the energy balance by. With
+    /// `old` the last step's contacts, each new contact (a new pair of features) is one of:
     ///
     /// - **a hand-over**: an ended contact of the same owners (a free sphere, a structure or a
-    ///   wall on each side) whose point is the nearest within the contact's size: the touching
-    ///   moved to other features (face to edge to face, edge to faces at a fold). The new
-    ///   contact takes its shear force, normal and dissipation, and an overlap offset
-    ///   `δ₀ = δ_new − (δ_old − δ₀_old)·kn_old/kn_new` (≥ 0), `δ_old` the ended contact's
-    ///   overlap at the current positions: the normal force is continuous across the switch
-    ///   and so is the elastic energy. Where `δ₀` would be negative (the new features overlap
-    ///   less than the force needs) it is 0 and the energy the new contact cannot hold is
-    ///   released (counted in `released`);
+    ///   wall on each side) whose point is the nearest within the elements' extent: the
+    ///   touching moved to other features (face to edge to face, edge to faces at a fold, or
+    ///   across an element between nearly parallel elements). The new contact takes its shear
+    ///   force, normal (when within the contact's size: the same touching) and dissipation,
+    ///   and an overlap offset `δ₀ = δ_new − δ_old·kn_old/kn_new` (≥ 0), `δ_old` the ended
+    ///   contact's overlap (less its offset) continued to the current positions: the normal
+    ///   force does not jump across the switch, and so neither does the elastic energy;
     /// - **a split**: no ended contact to take over, but a contact of the same owners within
-    ///   the contact's size existed at the last step, and the new one is found deeper than
+    ///   the elements' extent existed at the last step, and the new one is found deeper than
     ///   the approach of one step explains (`δ > u·dt`, `u` the approach speed): the touching
     ///   spread onto more features (a surface turning from convex to concave under a
-    ///   sphere). It is made with no force, `δ₀ = δ`, and the neighbour's normal;
-    /// - **a first touch**: full force. Found late (`δ > u·dt`: it passed a step with
-    ///   overlap unseen) it is counted as born deep, and the energy its late birth adds to the
-    ///   balance (with the leapfrog's kinetic energy, `½·kn·δ·(δ − u·dt)`) is counted in
-    ///   `born_energy`.
+    ///   sphere). It is made with no force, `δ₀ = δ`;
+    /// - **a first touch**: full force; found late (`δ > u·dt`: it passed a step with overlap
+    ///   unseen) it is counted as born deep.
     ///
-    /// Ended contacts that no new contact takes over release the elastic energy they would
-    /// hold at the current positions (`released`): nothing when they ended by separating.
+    /// The leapfrog's works (trapezoidal, with the kinetic energy `½m·v(t−dt/2)·v(t+dt/2)`)
+    /// close the balance exactly for linear springs that exist at both ends of a step. A
+    /// spring that enters at this step with overlap `δ` (one step before: `δ₋ = δ − u·dt`)
+    /// moves the balance by `½·kn·δ·δ₋`, one that leaves it (force `F` at the last step,
+    /// overlap `δ_now` continued to now) by `−½·F·δ_now`: small and of opposite signs for a
+    /// collision found on time, which then leaves no trace; positive for a contact found late
+    /// (energy put in: `born_energy`). A contact that ended while compressed (dropped by
+    /// the one-contact rule with no successor) gives up `½·F·δ_now`, and every ended contact
+    /// its shear spring's `½|Fs|²/ks` (`released`). A hand-over counts the ended contact's
+    /// exit and the new one's entry, which cancel to first order.
     fn settle_births(&mut self, model: &Model, dt: Real) -> BirthReport {
         let p = &model.particles;
         let k = Kinematics { pos: &p.pos, vel: &p.vel, ang_vel: &p.ang_vel };
@@ -522,8 +542,10 @@ impl Contacts {
                 taken[o] = true;
                 let before = &old[o];
                 let (_, _, g_old) = geometry(model, &k, before);
-                let carried = (g_old.overlap - before.state.overlap_offset).max(0.0);
-                let force = before.params.kn * carried;
+                let carried = g_old.overlap - before.state.overlap_offset;
+                // the ended contact's spring leaves the balance as if it had ended ...
+                report.born_energy -= 0.5 * before.state.normal_force * carried;
+                let force = before.params.kn * carried.max(0.0);
                 let c = &mut self.list[n];
                 let normal = c.state.normal;
                 c.state = before.state.clone();
@@ -543,37 +565,33 @@ impl Contacts {
                     }
                 }
                 let (_, _, g) = geometry(model, &k, c);
-                let wanted = force / c.params.kn;
-                let offset = g.overlap - wanted;
+                let offset = g.overlap - force / c.params.kn;
                 // the ended contact is continued on its last closest points, which lag the
                 // motion by a second-order amount (a sphere sliding by dx over a face at
                 // height h: dx²/2h): a touching that moved on continuously keeps its offset
                 let continuous = (offset - before.state.overlap_offset).abs()
                     <= 1e-6 * (c.site1.radius + c.site2.radius)
                     && before.params.kn == c.params.kn;
-                if continuous {
-                    c.state.overlap_offset = before.state.overlap_offset;
-                } else if offset >= 0.0 {
-                    c.state.overlap_offset = offset;
-                } else {
-                    let held = g.overlap.max(0.0);
-                    report.released += 0.5 * force * carried - 0.5 * c.params.kn * held * held;
-                }
+                c.state.overlap_offset =
+                    if continuous { before.state.overlap_offset } else { offset.max(0.0) };
+                // ... and the new one enters it as if it were born: the two nearly cancel
+                report.born_energy += birth_jump(c, &g, dt);
                 continue;
             }
             let (_, _, g) = geometry(model, &k, c);
             let approach = -g.relative_velocity.dot(&g.normal);
-            let late = g.overlap - approach * dt;
-            if !(late > 1e-12 * reach) {
-                continue; // found on time
+            // the overlap one step before, from the approach over the step
+            if !(g.overlap - approach * dt > 1e-12 * reach) {
+                report.born_energy += birth_jump(c, &g, dt); // found on time
+                continue;
             }
             if near(by_owners, None).is_some() {
                 // a split: made with no force, on its own normal
                 self.list[n].state.overlap_offset = g.overlap.max(0.0);
                 continue;
             }
+            report.born_energy += birth_jump(c, &g, dt);
             report.born_deep += 1;
-            report.born_energy += 0.5 * c.params.kn * g.overlap * late;
         }
         for &o in ended.iter() {
             if taken[o] {
@@ -582,13 +600,18 @@ impl Contacts {
             let c = &old[o];
             self.ended_dissipation += c.state.dissipated.total();
             let (_, _, g) = geometry(model, &k, c);
-            let held = (g.overlap - c.state.overlap_offset).max(0.0);
-            report.released += 0.5 * c.params.kn * held * held
-                + if c.params.ks > 0.0 {
-                    0.5 * c.state.shear_force.norm_squared() / c.params.ks
-                } else {
-                    0.0
-                };
+            let now = g.overlap - c.state.overlap_offset;
+            // the spring leaves the balance: −½·F·δ_now (see above); ended by separating
+            // (δ_now ≤ 0) that is put in, ended while compressed it is released
+            let jump = -0.5 * c.state.normal_force * now;
+            if jump >= 0.0 {
+                report.born_energy += jump;
+            } else {
+                report.released -= jump;
+            }
+            if c.params.ks > 0.0 {
+                report.released += 0.5 * c.state.shear_force.norm_squared() / c.params.ks;
+            }
         }
         report
     }

@@ -78,15 +78,14 @@ pub enum SimulationError {
         /// The last critical step estimate.
         critical_dt: Real,
     },
-    /// The energy balance error passed the limit: the run made (or lost) energy it cannot
-    /// account for.
+    /// The energy balance error passed the limit on the side of energy created: the run made
+    /// energy it cannot account for.
     #[error(
         "the energy balance is off by {error:+.3e} of the energy scale {scale:.4e} J \
          ({change:+.4e} J) at step {step} (t = {time:.6e} s), beyond the limit {limit:.1e}: \
-         the run {verb} energy it cannot account for. {culprit}. Use a smaller time step \
+         the run created energy it cannot account for. {culprit}. Use a smaller time step \
          (dt = auto with a smaller safety factor), or widen the check with \
-         `energy_tolerance` in [simulation] (\"off\" switches it off)",
-        verb = if *error > 0.0 { "created" } else { "lost" }
+         `energy_tolerance` in [simulation] (\"off\" switches it off)"
     )]
     EnergyBalance {
         /// The step.

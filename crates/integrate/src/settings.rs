@@ -40,7 +40,8 @@ pub struct Settings {
     /// Recompute the automatic time step every this many steps (and when contacts appear).
     pub time_step_interval: u64,
     /// The run stops when the energy balance error, relative to the energy scale, passes this
-    /// (see `EnergyWatch`); `None` switches the watch off.
+    /// on the side of energy created (energy lost beyond it raises a warning; see
+    /// `EnergyWatch`); `None` switches the watch off.
     pub energy_tolerance: Option<Real>,
 }
 

@@ -46,8 +46,11 @@ pub struct Energy {
     /// contacts) and imposed velocities and spins (the support's reaction, `−Σ (F·v + τ·ω)·dt`
     /// over blocked DOFs, `F` and `τ` from links and contacts) (J).
     pub boundary_work: Real,
-    /// Energy put in by contacts found late, with an overlap one step of approach does not
-    /// explain (`½·kn·δ·(δ − u·dt)` each, see `Contacts::settle_births`) (J).
+    /// Energy put in by contacts that started or ended between two steps (J): `½·kn·δ·δ₋`
+    /// per first touch (`δ₋` the overlap one step before: negative for a contact found on
+    /// time, positive for one found late, with an overlap one step of approach does not
+    /// explain) and `−½·F·δ_now` per contact ended by separating (see
+    /// `Contacts::settle_births`). Collisions found on time add as much as they take.
     pub contact_births: Real,
     /// Elastic energy given up by contacts that ended or were handed over while holding it
     /// (J).
@@ -181,6 +184,9 @@ pub struct Snapshot {
     /// Warnings raised so far.
     pub warnings: Vec<String>,
 }
+
+/// How the warning about energy lost beyond the energy tolerance begins.
+const ENERGY_LOST_WARNING: &str = "the run lost";
 
 /// How the warning about a fixed dt above the critical step begins.
 const FIXED_DT_WARNING: &str = "the fixed time step";
@@ -768,11 +774,28 @@ impl Simulation {
     }
 
     /// Stops the run when the energy balance error passes `settings.energy_tolerance`
-    /// (relative to the energy scale), naming the step, the time and where the energy is.
-    fn watch_energy(&self) -> Result<(), SimulationError> {
+    /// (relative to the energy scale) on the side of energy created, naming the step, the
+    /// time and where the energy is. Energy lost beyond the limit (dissipation the balance
+    /// does not count) raises a warning, once.
+    fn watch_energy(&mut self) -> Result<(), SimulationError> {
         let Some(limit) = self.settings.energy_tolerance else { return Ok(()) };
         let error = self.watch.relative_error(&self.energy);
-        if error.abs() <= limit || error.is_nan() {
+        if error.is_nan() || error.abs() <= limit {
+            return Ok(());
+        }
+        let change = self.energy.balance() - self.watch.initial_balance;
+        if error < 0.0 {
+            if !self.warnings.iter().any(|w| w.starts_with(ENERGY_LOST_WARNING)) {
+                self.warnings.push(format!(
+                    "{ENERGY_LOST_WARNING} {change:+.4e} J ({error:+.3e} of the energy scale \
+                     {scale:.4e} J) by step {step} (t = {time:.6e} s) that the balance does not \
+                     count: {culprit}",
+                    scale = self.watch.scale,
+                    step = self.steps,
+                    time = self.time,
+                    culprit = crate::culprit::describe(self)
+                ));
+            }
             return Ok(());
         }
         Err(SimulationError::EnergyBalance {
@@ -780,7 +803,7 @@ impl Simulation {
             time: self.time,
             error,
             limit,
-            change: self.energy.balance() - self.watch.initial_balance,
+            change,
             scale: self.watch.scale,
             culprit: crate::culprit::describe(self),
         })

@@ -1,0 +1,201 @@
+//! Every work enters the energy balance (model: energy): load moments, the user's force hook,
+//! moving walls, imposed velocities and spins, each against a known answer; and a run that
+//! creates energy stops and says where.
+
+use flexdem::contact::Material;
+use flexdem::elements::builders::{chain, straight_line, StructureOptions};
+use flexdem::elements::{Dofs, Model};
+use flexdem::geom::{Real, Vec3};
+use flexdem::integrate::{Load, Ramp, Settings, Simulation, SimulationError, TimeStep};
+
+fn material(model: &mut Model) -> u32 {
+    model.add_material(Material::new(1e7, 0.3, 1000.0, 0.5).unwrap()).unwrap()
+}
+
+fn fixed(dt: Real) -> Settings {
+    Settings { time_step: TimeStep::Fixed(dt), ..Settings::default() }
+}
+
+/// A constant torque τ on a free sphere for time T: ω = τT/I, and the work of the load moment
+/// is the rotational kinetic energy ½Iω² = (τT)²/(2I).
+#[test]
+fn the_work_of_a_load_moment_is_the_kinetic_energy_it_gives() {
+    let mut model = Model::new();
+    let m = material(&mut model);
+    let s = model.add_sphere(Vec3::zeros(), 0.05, m).unwrap();
+    let inertia = model.particles.inertia[s as usize];
+    let mut sim = Simulation::new(model, fixed(1e-4)).unwrap();
+    let tau = Vec3::new(0.0, 0.0, 2e-3);
+    sim.add_load(Load {
+        particles: vec![s],
+        force: Vec3::zeros(),
+        torque: tau,
+        ramp: Ramp::Constant,
+    })
+    .unwrap();
+    sim.run(10_000).unwrap();
+    let t = sim.time();
+    let e = sim.energy();
+    let expected = (tau.z * t).powi(2) / (2.0 * inertia);
+    // kinetic energy ½I·ω(t − dt/2)·ω(t + dt/2), work up to t
+    assert!((e.kinetic_rotation / expected - 1.0).abs() < 1e-3, "{e:?} vs {expected}");
+    assert!((e.load_work / e.kinetic_rotation - 1.0).abs() < 1e-12, "{e:?}");
+    assert!(sim.relative_balance_error().abs() < 1e-12);
+}
+
+/// A force hook pushing a free sphere with F(t) = F0·t: its work is the kinetic energy,
+/// ½m·v² with v = F0·t²/(2m).
+#[test]
+fn the_work_of_the_force_hook_is_counted() {
+    let mut model = Model::new();
+    let m = material(&mut model);
+    let s = model.add_sphere(Vec3::zeros(), 0.05, m).unwrap();
+    let mass = model.particles.mass[s as usize];
+    let mut sim = Simulation::new(model, fixed(1e-4)).unwrap();
+    let f0 = 3.0;
+    sim.set_force_hook(Box::new(move |t, _, force, torque| {
+        force[0] += Vec3::new(f0 * t, 0.0, 0.0);
+        torque[0] += Vec3::new(0.0, 1e-3, 0.0);
+    }));
+    sim.run(10_000).unwrap();
+    let t = sim.time();
+    let e = sim.energy();
+    let v = f0 * t * t / (2.0 * mass);
+    assert!((e.kinetic_translation / (0.5 * mass * v * v) - 1.0).abs() < 1e-3, "{e:?}");
+    let kinetic = e.kinetic_translation + e.kinetic_rotation;
+    assert!((e.load_work / kinetic - 1.0).abs() < 1e-9, "{e:?}");
+    assert!(sim.relative_balance_error().abs() < 1e-9);
+}
+
+/// A sphere at rest hit by a wall moving at v (no gravity, no friction loss in a head-on
+/// impact): it leaves at 2v, as from an infinitely heavy body, and the wall's work is its
+/// kinetic energy 2·m·v².
+#[test]
+fn a_moving_wall_does_the_work_it_gives_a_sphere() {
+    let mut model = Model::new();
+    let m = material(&mut model);
+    let w = model.add_wall(Vec3::zeros(), Vec3::z(), m).unwrap();
+    let v = 0.5;
+    model.walls[w as usize].velocity = Vec3::new(0.0, 0.0, v);
+    let s = model.add_sphere(Vec3::new(0.0, 0.0, 0.06), 0.05, m).unwrap();
+    let mass = model.particles.mass[s as usize];
+    // a fixed step: the balance is exact for linear springs at a constant step
+    let settings = fixed(2e-4);
+    let mut sim = Simulation::new(model, settings).unwrap();
+    while sim.contacts.list.is_empty() {
+        sim.step().unwrap();
+    }
+    while !sim.contacts.list.is_empty() {
+        sim.step().unwrap();
+    }
+    sim.run(10).unwrap();
+    let e = sim.energy();
+    let speed = sim.model.particles.vel[s as usize].z;
+    assert!((speed / (2.0 * v) - 1.0).abs() < 1e-2, "the sphere leaves at {speed}");
+    assert!((e.boundary_work / (2.0 * mass * v * v) - 1.0).abs() < 2e-2, "{e:?}");
+    assert!(sim.relative_balance_error().abs() < 1e-9, "{e:?}");
+}
+
+/// The same impact from a sphere whose velocity is imposed (blocked DOFs): the support that
+/// holds its velocity does the work 2·m·v² on the free sphere.
+#[test]
+fn an_imposed_velocity_does_the_work_it_gives() {
+    let mut model = Model::new();
+    let m = material(&mut model);
+    let v = 0.5;
+    let driver = model.add_sphere(Vec3::zeros(), 0.05, m).unwrap();
+    model.impose_velocity([driver], Vec3::new(0.0, 0.0, v)).unwrap();
+    model.block([driver], Dofs::ROTATION).unwrap();
+    let s = model.add_sphere(Vec3::new(0.0, 0.0, 0.11), 0.05, m).unwrap();
+    let mass = model.particles.mass[s as usize];
+    let settings = fixed(2e-4);
+    let mut sim = Simulation::new(model, settings).unwrap();
+    while sim.contacts.list.is_empty() {
+        sim.step().unwrap();
+    }
+    while !sim.contacts.list.is_empty() {
+        sim.step().unwrap();
+    }
+    let e = sim.energy();
+    let speed = sim.model.particles.vel[s as usize].z;
+    assert!((speed / (2.0 * v) - 1.0).abs() < 1e-2, "the sphere leaves at {speed}");
+    assert!((e.boundary_work / (2.0 * mass * v * v) - 1.0).abs() < 2e-2, "{e:?}");
+    assert!(sim.relative_balance_error().abs() < 1e-9, "{e:?}");
+}
+
+/// A one-link cantilever twisted by an imposed spin at its clamped end: the support's work
+/// goes into the link's twist and the free node's rotation, and the balance closes.
+#[test]
+fn an_imposed_spin_does_the_work_the_link_stores() {
+    let mut model = Model::new();
+    let m = material(&mut model);
+    let points = straight_line(Vec3::zeros(), Vec3::new(0.1, 0.0, 0.0), 1).unwrap();
+    chain(&mut model, &points, &StructureOptions::new("bar", 0.01, m)).unwrap();
+    model.block([0], Dofs::TRANSLATION).unwrap();
+    model.impose_angular_velocity([0], Vec3::new(2.0, 0.0, 0.0)).unwrap();
+    model.block([1], Dofs::TRANSLATION).unwrap();
+    let settings = Settings { time_step: TimeStep::Auto { safety: 0.3 }, ..Settings::default() };
+    let mut sim = Simulation::new(model, settings).unwrap();
+    let mut worst: Real = 0.0;
+    for _ in 0..2000 {
+        sim.step().unwrap();
+        worst = worst.max(sim.relative_balance_error().abs());
+    }
+    let e = sim.energy();
+    assert!(e.boundary_work > 0.0 && e.elastic_links > 0.0, "{e:?}");
+    assert!(worst < 1e-6, "balance off by {worst:.3e}: {e:?}");
+}
+
+/// Energy put in from nowhere (a velocity set by hand between steps, which no work accounts
+/// for) stops the run with an error naming the step and the fastest particle; with the watch
+/// off the run goes on.
+#[test]
+fn a_run_that_creates_energy_stops_and_says_where() {
+    let run = |tolerance: Option<Real>| {
+        let mut model = Model::new();
+        let m = material(&mut model);
+        model.add_sphere(Vec3::zeros(), 0.05, m).unwrap();
+        model.add_sphere(Vec3::new(0.5, 0.0, 0.0), 0.05, m).unwrap();
+        model.particles.vel[0] = Vec3::new(1.0, 0.0, 0.0);
+        let settings = Settings { energy_tolerance: tolerance, ..fixed(1e-4) };
+        let mut sim = Simulation::new(model, settings).unwrap();
+        sim.run(100).unwrap();
+        sim.model.particles.vel[1] = Vec3::new(0.0, 2.0, 0.0);
+        sim.run(100)
+    };
+    match run(Some(0.05)) {
+        Err(SimulationError::EnergyBalance { step, error, .. }) => {
+            assert_eq!(step, 101);
+            assert!(error > 0.05);
+        }
+        other => panic!("expected the energy watch to stop the run: {other:?}"),
+    }
+    let message = run(Some(0.05)).unwrap_err().to_string();
+    assert!(message.contains("created energy") && message.contains("sphere 1"), "{message}");
+    assert!(message.contains("step 101"), "{message}");
+    run(None).unwrap();
+    // a widened limit lets it go on (the error is 0.8 of the scale)
+    run(Some(0.9)).unwrap();
+}
+
+/// A fixed dt 1.3 times the critical step: the run becomes unstable, and the energy watch
+/// stops it long before positions blow up.
+#[test]
+fn an_unstable_run_is_stopped_by_its_energy_first() {
+    let mut model = Model::new();
+    let m = material(&mut model);
+    let points = straight_line(Vec3::zeros(), Vec3::new(0.5, 0.0, 0.0), 5).unwrap();
+    chain(&mut model, &points, &StructureOptions::new("cable", 0.01, m)).unwrap();
+    model.block([0], Dofs::ALL).unwrap();
+    model.particles.vel[5] = Vec3::new(0.0, 0.0, 0.1);
+    let probe = Simulation::new(model.clone(), Settings::default()).unwrap();
+    let settings =
+        Settings { time_step: TimeStep::Fixed(1.3 * probe.critical_dt()), ..Settings::default() };
+    let mut sim = Simulation::new(model, settings).unwrap();
+    let result = sim.run(100_000);
+    assert!(
+        matches!(result, Err(SimulationError::EnergyBalance { .. })),
+        "{result:?} at step {}",
+        sim.steps()
+    );
+}
