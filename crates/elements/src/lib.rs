@@ -20,6 +20,7 @@ mod model;
 pub mod pairs;
 mod particles;
 mod selection;
+pub mod self_overlap;
 pub mod touching;
 pub mod virtual_sphere;
 

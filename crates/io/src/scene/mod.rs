@@ -12,7 +12,6 @@ mod check;
 mod error;
 pub mod memory;
 mod output;
-mod overlap;
 pub mod packing;
 pub mod placement;
 mod schema;

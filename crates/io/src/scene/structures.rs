@@ -214,7 +214,7 @@ impl Builder<'_> {
             self.model.particles.pos[n] = place.apply_rigid(self.model.particles.pos[n]);
             self.model.particles.vel[n] = velocity;
         }
-        if let Some(o) = super::overlap::self_overlap(&self.model, id) {
+        if let Some(o) = flexdem_elements::self_overlap::self_overlap(&self.model, id) {
             return Err(ctx.at(
                 table,
                 "structures",

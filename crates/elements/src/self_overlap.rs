@@ -1,15 +1,16 @@
-//! Structures that overlap themselves at the start: two elements of one structure that share
-//! no node (so the engine lets them touch) but whose hulls already interpenetrate when the
-//! scene is built (a helix of pitch 0, a chain of segments shorter than its diameter, a mesh
-//! with nodes thicker than its cells). The engine would push them apart from the first step;
-//! the scene refuses them instead, naming the two elements and where they are.
+//! Structures that overlap themselves: two elements of one structure that share no node (so
+//! the engine lets them touch) but whose hulls interpenetrate (a helix of pitch 0, a chain of
+//! segments shorter than its diameter, a mesh with nodes thicker than its cells). Built that
+//! way, the engine would push them apart from the first step, and the collider would list
+//! every such pair as a candidate: a million segments 1 µm long and 1 cm thick overlap
+//! 20 000 others each, 2·10¹⁰ pairs (the 16 GiB allocation of issue 13). The scene reader
+//! refuses them with [`self_overlap`], naming the two elements and where they are.
 //!
 //! The search is a cell list over the structure's collidable elements (connections of no
 //! PFacet, PFacets, as in the engine's collider) that stops at the first overlap, so a dense
-//! overlapping structure (a million segments 1 µm long and 1 cm thick) is refused at once
-//! instead of listing its billions of overlapping pairs.
+//! overlapping structure is found at once: linear time and memory in its elements.
 
-use flexdem_elements::{Model, StructureId};
+use crate::{Model, StructureId};
 use flexdem_geom::{
     closest_points_segment_segment, closest_points_segment_triangle,
     closest_points_triangle_triangle, Real, Vec3,
@@ -44,7 +45,7 @@ impl Item {
 
 /// Two elements of one structure that overlap at the start.
 #[derive(Clone, Debug)]
-pub(crate) struct SelfOverlap {
+pub struct SelfOverlap {
     /// The first element, e.g. `connection 0 (nodes 0–1)`, ids within the structure.
     pub first: String,
     /// The second element.
@@ -58,8 +59,10 @@ pub(crate) struct SelfOverlap {
 }
 
 /// The first pair of elements of structure `id` that share no node and overlap (skeleton
-/// distance below the sum of their radii), if any is found.
-pub(crate) fn self_overlap(model: &Model, id: StructureId) -> Option<SelfOverlap> {
+/// distance below the sum of their radii by more than a relative 1e-9), if any is found. Gives
+/// up (None) after 2·10⁷ exact tests of pairs whose boxes overlap but whose elements do not.
+/// Element and node ids in the answer count from the structure's first.
+pub fn self_overlap(model: &Model, id: StructureId) -> Option<SelfOverlap> {
     let st = model.structures.get(id as usize)?;
     let pos = &model.particles.pos;
     let mut in_pfacet = vec![false; st.connections.len()];
@@ -225,4 +228,58 @@ fn overlap(model: &Model, first_node: u32, a: &Item, b: &Item) -> Option<SelfOve
         radii,
         at: 0.5 * (x + y),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::builders::test_support::model_with_material;
+    use crate::builders::{chain, helix, membrane_rectangle, straight_line};
+    use crate::StructureOptions;
+
+    #[test]
+    fn a_chain_thicker_than_its_segments_overlaps_itself() {
+        let (mut model, mat) = model_with_material(1000.0);
+        let opts = StructureOptions::new("beam", 0.01, mat);
+        // segments 1 µm long, 1 cm thick: connection 0 overlaps connection 2
+        let points = straight_line(Vec3::zeros(), Vec3::x(), 100_000).unwrap();
+        let s = chain(&mut model, &points, &opts).unwrap();
+        let o = self_overlap(&model, s).unwrap();
+        assert_eq!(
+            (o.first.as_str(), o.second.as_str()),
+            ("connection 0 (nodes 0–1)", "connection 2 (nodes 2–3)")
+        );
+        assert!(o.distance < 1.1e-5 && o.radii == 0.02, "{o:?}");
+        // segments exactly as long as the diameter touch at rest: no overlap
+        let points = straight_line(Vec3::zeros(), Vec3::x() * 0.2, 10).unwrap();
+        let s = chain(&mut model, &points, &StructureOptions::new("touching", 0.01, mat)).unwrap();
+        assert!(self_overlap(&model, s).is_none());
+    }
+
+    #[test]
+    fn a_helix_of_pitch_zero_overlaps_itself_and_a_proper_one_does_not() {
+        let (mut model, mat) = model_with_material(1000.0);
+        let flat = helix(Vec3::zeros(), 0.1, 0.0, 2.0, 12).unwrap();
+        let s = chain(&mut model, &flat, &StructureOptions::new("flat", 0.01, mat)).unwrap();
+        let o = self_overlap(&model, s).unwrap();
+        assert!(o.distance < 1e-12, "{o:?}");
+        let open = helix(Vec3::x() * 5.0, 0.1, 0.05, 2.0, 12).unwrap();
+        let s = chain(&mut model, &open, &StructureOptions::new("open", 0.01, mat)).unwrap();
+        assert!(self_overlap(&model, s).is_none());
+    }
+
+    #[test]
+    fn a_membrane_overlaps_itself_only_with_nodes_thicker_than_its_cells() {
+        let (mut model, mat) = model_with_material(1000.0);
+        let (u, v) = (Vec3::x(), Vec3::y());
+        let thin = StructureOptions::new("thin", 0.002, mat);
+        let s =
+            membrane_rectangle(&mut model, Vec3::zeros(), u, v, 1.0, 1.0, 16, 16, &thin).unwrap();
+        assert!(self_overlap(&model, s).is_none());
+        let thick = StructureOptions::new("thick", 0.05, mat);
+        let at = Vec3::z() * 3.0;
+        let s = membrane_rectangle(&mut model, at, u, v, 1.0, 1.0, 16, 16, &thick).unwrap();
+        let o = self_overlap(&model, s).unwrap();
+        assert!(o.first.starts_with("PFacet") && o.second.starts_with("PFacet"), "{o:?}");
+    }
 }
