@@ -13,6 +13,15 @@
 //! than m_a (every particle's limit is the smallest margin of the elements holding it), and a
 //! hull's points are convex combinations of its nodes, so the pair cannot have closed the gap.
 //!
+//! Memory: the boxes, margins and cell entries (at most 64 per element, 8 at most for a
+//! typical box) are linear in the elements; the candidate pairs are as many as the pairs of
+//! overlapping boxes, linear at bounded density but not when a structure overlaps itself: a
+//! chain of 10⁶ segments 1 µm long and 1 cm thick (a mutated `segments` of the cantilever)
+//! has each connection's box over 20 000 others', 2·10¹⁰ pairs, and the pair list asked for
+//! 16 GiB. No box test can drop those pairs without dropping real contacts; such a structure
+//! cannot run anyway (its elements would push each other apart from the first step), so the
+//! scene reader refuses it at once with `flexdem_elements::self_overlap`.
+//!
 //! Collidable elements are the free spheres, the connections that belong to no PFacet, and
 //! the PFacets (a PFacet's edges and nodes are part of it). Nodes are touched only through
 //! their elements, except by walls, which touch every particle (a plane's deepest point on a
