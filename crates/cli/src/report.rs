@@ -99,7 +99,7 @@ pub fn text(summary: &Summary) -> String {
     let _ = writeln!(
         s,
         "energy (J): kinetic {:.4e} + {:.4e} (rotation), elastic links {:.4e}, contacts {:.4e}; \
-         work of gravity {:.4e}, of loads {:.4e}, of boundaries {:.4e}; late contact births {:.4e}; \
+         work of gravity {:.4e}, of loads {:.4e}, of boundaries {:.4e}; contact births and ends {:.4e}; \
          dissipated by damping {:.4e}, links {:.4e}, friction {:.4e}; released by contacts {:.4e}",
         t.kinetic_translation,
         t.kinetic_rotation,

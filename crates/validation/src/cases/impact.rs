@@ -10,6 +10,7 @@
 //! terms, and stop once the impactor has stopped (its mean vertical velocity is no longer
 //! downwards) or at the scene's duration.
 
+use crate::cases::brazier::min_self_distance;
 use crate::plot::{plot_xy, Curve, CurveStyle, PlotSpec};
 use crate::report::{CaseReport, Check, Context, Figure};
 use crate::ValidationError;
@@ -22,12 +23,23 @@ use std::path::{Path, PathBuf};
 const TUBE_RADIUS: Real = 0.1;
 /// Impact speed (paper §7), m/s.
 const IMPACT_SPEED: Real = 2.0;
-/// Crater depth of the solid sphere: within ±30 % of the tube radius ("about as deep").
-const CRATER_TOL: Real = 0.3;
+/// Crater depth of the solid sphere: the paper's "almost corresponds to its radius", read as
+/// "of the order of R": within [R/2, 2R] (the paper gives no number, only figure 5, and no
+/// densities; the crater measured here includes the sag of the clamped middle section).
+const CRATER_BAND: (Real, Real) = (0.5, 2.0);
+/// The largest displacement of a tube node in YADE 2023.02a's run of the same scene (the
+/// light sphere: shared/reference/yade/tube_impact, mode `solid`), m; and the tolerance of the
+/// comparison (the meshes differ: YADE's has no node at the top of the tube).
+const YADE_CRATER: Real = 0.143;
+const YADE_CRATER_TOL: Real = 0.2;
 /// "Stopped": the residual approach speed is below 5 % of the impact speed.
 const STOP_TOL: Real = 0.05 * IMPACT_SPEED;
 /// Energy balance error, relative to the initial kinetic energy.
-const ENERGY_TOL: Real = 1e-2;
+const ENERGY_TOL: Real = 5e-3;
+/// Self-penetration not carried by a contact, as a fraction of 2r (the long runs).
+const UNEXPLAINED_PENETRATION: Real = 1e-2;
+/// The long runs look at the node–PFacet distances every this many steps.
+const PENETRATION_EVERY: u64 = 10;
 /// Steps of the quick runs: a few hundred steps into the contact.
 const QUICK_STEPS_SOLID: u64 = 300;
 const QUICK_STEPS_HOLLOW: u64 = 400;
@@ -35,6 +47,8 @@ const QUICK_STEPS_HOLLOW: u64 = 400;
 const SAMPLE_EVERY: u64 = 5;
 /// Impactor densities (kg/m³) of the informative sweep of the solid case.
 const SWEEP_DENSITIES: [Real; 4] = [10.0, 30.0, 100.0, 300.0];
+/// The heavy sphere's scene: density 1000 kg/m³ (4.19 kg).
+const HEAVY: &str = "tube_impact_heavy.toml";
 /// Name of the tube structure in both scenes.
 const TUBE: &str = "tube";
 
@@ -383,8 +397,10 @@ const SETUP_COMMON: &str = "Tube (paper §7): 640 PFacets (16 nodes around × 20
     along, flexdem's `paper_tube`), radius R = 0.1 m, length 0.8 m, node radius 2 mm, E = 1 MPa, \
     ν = 0.3, along x; the impactor (radius 0.1 m, E = 100 MPa, ν = 0.3) starts 5 mm above the \
     middle of the tube at 2 m/s downwards; no gravity, no damping, beam link kinematics, dt = auto \
-    with safety 0.3. **Not in the paper, our choices:** densities 1000 kg/m³ (YADE's default) for \
-    both, friction angle 30°, both end rings of the tube clamped (all DOFs). Measured every step: \
+    with safety 0.3. **Not in the paper, our choices:** the tube's density 1000 kg/m³ (YADE's \
+    default); the solid sphere's 26.77 kg/m³, the mass of the hollow impactor (0.112 kg) as in the \
+    YADE reference runs (`tube_impact_heavy.toml`: 1000 kg/m³, 4.19 kg, safety 0.1); friction \
+    angle 30°, both end rings of the tube clamped (all DOFs). Measured every step: \
     impactor centre of mass and mean velocity, total contact force on it, crater depth = largest \
     displacement of a tube node (with clamped ends it includes the sag of the whole middle \
     section), energy terms (`Simulation::energy`), balance error = max |B(t) − B(0)| / Ek(0). \
@@ -415,13 +431,20 @@ pub fn impact_solid(ctx: &Context) -> Result<CaseReport, ValidationError> {
     if ctx.quick {
         report.checks.push(slowing_check(&run));
     } else {
-        report.checks.push(Check::relative(
-            "crater depth / tube radius when the sphere stops",
+        report.checks.push(in_range(
+            "crater depth / tube radius when the sphere stops, in [0.5, 2]",
             "",
-            1.0,
+            CRATER_BAND,
             run.crater() / TUBE_RADIUS,
-            CRATER_TOL,
-            "paper §7: the deformation 'almost corresponds to its radius' (±30 %)",
+            "paper §7: the deformation 'almost corresponds to its radius' (figure 5)",
+        ));
+        report.checks.push(Check::relative(
+            "crater depth when the sphere stops",
+            "m",
+            YADE_CRATER,
+            run.crater(),
+            YADE_CRATER_TOL,
+            "YADE 2023.02a, same scene: largest tube node displacement 0.143 m",
         ));
         report.checks.push(Check::absolute(
             "residual approach speed max(0, min −v_z)",
@@ -437,21 +460,17 @@ pub fn impact_solid(ctx: &Context) -> Result<CaseReport, ValidationError> {
     if !ctx.quick {
         density_sweep(ctx, &mut report, &run)?;
     }
-    report.notes = "With the paper's tube (2 mm links of E = 1 MPa: kn = E·A/L ≈ 314 N/m per \
-        link, bending EI/L ≈ 3e-7 N·m per 40 mm link: a membrane with almost no ring stiffness) \
-        and a 1000 kg/m³ sphere (4.19 kg, 8.38 J), the sphere is **not** stopped in a crater of \
-        about the tube radius: it stays in contact with the wall (no detection failure: \
-        sphere–wall overlaps of 3 mm at most), pushes it down, flattens the section, drags the \
-        clamped tube like a sling and stops only after about 4 tube radii. A crater of R ± 30 % \
-        needs a sphere of ≈ 5–20 kg/m³ (0.02–0.08 kg, see the sweep): no defensible solid. On a \
-        rigid floor instead of clamped ends, impactors of 40 g and more flatten the tube \
-        (measured in development: craters 1.7–2.1 R for 10–300 kg/m³). The run ends at the \
-        stop: at safety 0.5 it became unstable at t ≈ 0.256 s, and in the rebound (t ≈ 0.29 s \
-        at safety 0.3, 0.32 s at 0.1) the flattened walls are squeezed through each other \
-        (PFacet–PFacet contacts with overlap r1 + r2: crossing triangles) and the energy \
-        explodes. The balance error comes in steps of ~1e-2 J when contacts appear or vanish \
-        with a finite overlap (the ownership rule switching between an edge contact and face \
-        contacts as the wall turns from convex to concave)."
+    report.notes = "The sphere has the mass of the paper's hollow impactor (0.112 kg, density \
+        26.77 kg/m³), as in the YADE reference runs: the paper gives no densities, and its tube \
+        (2 mm links of E = 1 MPa: kn = E·A/L ≈ 314 N/m per link, bending EI/L ≈ 3e-7 N·m per \
+        40 mm link: a membrane with almost no ring stiffness) cannot stop a sphere of YADE's \
+        default density 1000 kg/m³ (4.19 kg, 8.38 J) in a crater of about R: that one drags \
+        the clamped tube down like a sling by about four radii (examples/tube_impact_heavy.toml, \
+        and the long runs below). The light sphere stops in a crater of about 1.5 R, as YADE's \
+        run of the same scene (0.143 m), and rebounds at about 1.35 m/s. The paper's 'almost \
+        corresponds to its radius' comes with figure 5 only, so the check reads it as 'of the \
+        order of R', [R/2, 2R]; the crater measured here (the largest displacement of a tube \
+        node) includes the sag of the whole clamped middle section."
         .into();
     Ok(report)
 }
@@ -490,12 +509,12 @@ fn density_sweep(
         "density_sweep",
         ("Crater depth at the stop vs impactor mass", "impactor mass (kg)", "crater / R"),
         &[
-            Curve::new("flexdem, density 10, 30, 100, 300, 1000 kg/m3", points, CurveStyle::Points),
-            band(1.0 - CRATER_TOL),
-            band(1.0 + CRATER_TOL),
+            Curve::new("flexdem, density 10, 26.8, 30, 100, 300 kg/m3", points, CurveStyle::Points),
+            band(CRATER_BAND.0),
+            band(CRATER_BAND.1),
         ],
         "Crater depth when the sphere stops, over the tube radius, for several sphere densities; \
-         dashed: the paper's 'about R' band (±30 %).",
+         dashed: the band [R/2, 2R] read from the paper's 'about R'.",
     )
 }
 
@@ -518,16 +537,18 @@ pub fn impact_hollow(ctx: &Context) -> Result<CaseReport, ValidationError> {
                  that the shell slows down."
             )
         } else {
-            "Full run; the solid case's run is repeated for the comparison of craters.".into()
+            "Full run; the heavy solid sphere's scene (examples/tube_impact_heavy.toml, 4.19 kg) \
+             is run too for the comparison of craters."
+                .into()
         }
     );
     common_checks(&mut report, &run);
     if ctx.quick {
         report.checks.push(slowing_check(&run));
     } else {
-        let solid = run_impact(id, "tube_impact_solid.toml", None, None)?;
+        let solid = run_impact(id, HEAVY, None, None)?;
         report.checks.push(in_range(
-            "crater depth hollow / solid, in (0, 1)",
+            "crater depth hollow / heavy solid, in (0, 1)",
             "",
             (0.0, 1.0),
             run.crater() / solid.crater(),
@@ -550,21 +571,169 @@ pub fn impact_hollow(ctx: &Context) -> Result<CaseReport, ValidationError> {
         ));
         report.inform(
             "craters (at the stop)",
-            format!("hollow {:.4} m, solid {:.4} m", run.crater(), solid.crater()),
+            format!("hollow {:.4} m, heavy solid {:.4} m", run.crater(), solid.crater()),
         );
     }
     inform_run(&mut report, &run);
     report.inform("largest shell deformation", format!("{:.2} %", 100.0 * run.max_shell_strain()));
     plot_run(ctx, &mut report, &run)?;
-    report.notes = "The shell's mass is lumped from its connections (YADE's rule), 0.114 kg \
-        against 4.19 kg for the solid sphere of the same density: it carries 0.23 J instead of \
-        8.38 J, so the tube deforms much less, as in the paper, and the shell stops in a crater \
-        of about 1.5 tube radii. The shell itself deforms little (E = 100 MPa): peaks of \
-        ~1.4 % of its radius at contact events, 0.3–0.7 % otherwise as it rings; the 1 % \
-        threshold of the check is ours. Energy steps come from contacts that appear or vanish \
-        with a finite overlap (edge ↔ face switches of the ownership rule as the walls turn \
-        concave); the first large one (~9e-3·Ek(0), t ≈ 12 ms) falls after the quick run's 400 steps \
-        (t ≈ 9.5 ms), so the quick run passes where the full run exceeds 1e-2."
+    report.notes = "The shell's mass is lumped from its connections (YADE's rule), 0.112 kg \
+        against 4.19 kg for a solid sphere of the same density (the heavy example): it carries \
+        0.22 J instead of 8.38 J, so the tube deforms much less, as in the paper, and the shell \
+        stops in a crater of about 1.5 tube radii. The shell itself deforms little \
+        (E = 100 MPa): peaks of ~1.4 % of its radius at contact events, 0.3–0.7 % otherwise as \
+        it rings; the 1 % threshold of the check is ours."
+        .into();
+    Ok(report)
+}
+
+/// What a long run of an example scene measured.
+struct LongRun {
+    end_time: Real,
+    steps: u64,
+    /// max |B(t) − B(0)| / Ek(0) over every step.
+    balance_error: Real,
+    /// Largest (2r − node–PFacet distance) − largest F_n/k_n of the contacts, over the samples.
+    unexplained_penetration: Real,
+    /// Smallest node–PFacet distance between non-neighbours over the samples (m).
+    min_distance: Real,
+    contacts_born_deep: u64,
+    engine_error: Option<String>,
+    energy: Energy,
+    node_radius: Real,
+}
+
+/// Runs the scene `file` to its duration, watching the energy balance every step and the
+/// node–PFacet distances of the tube every [`PENETRATION_EVERY`] steps.
+fn long_run(file: &str) -> Result<LongRun, ValidationError> {
+    let scene = load_scene(&scene_path(file))?;
+    let end = match scene.run {
+        RunLength::Duration(d) => d,
+        RunLength::Steps(_) => Real::INFINITY,
+    };
+    let node_radius = scene.model.particles.radius[0];
+    let mut sim = Simulation::new(scene.model, scene.settings)?;
+    let kinetic0 = sim.energy().kinetic_translation + sim.energy().kinetic_rotation;
+    let balance0 = sim.energy().balance();
+    let mut run = LongRun {
+        end_time: 0.0,
+        steps: 0,
+        balance_error: 0.0,
+        unexplained_penetration: 0.0,
+        min_distance: Real::INFINITY,
+        contacts_born_deep: 0,
+        engine_error: None,
+        energy: *sim.energy(),
+        node_radius,
+    };
+    while sim.time() < end {
+        if let Err(e) = sim.step() {
+            run.engine_error = Some(e.to_string());
+            break;
+        }
+        run.balance_error =
+            run.balance_error.max((sim.energy().balance() - balance0).abs() / kinetic0);
+        if sim.steps() % PENETRATION_EVERY == 0 {
+            let distance = min_self_distance(&sim.model);
+            let carried = sim
+                .contacts
+                .list
+                .iter()
+                .map(|c| c.forces.normal_force / c.params.kn)
+                .fold(0.0, Real::max);
+            let penetration = 2.0 * node_radius - distance;
+            run.unexplained_penetration = run.unexplained_penetration.max(penetration - carried);
+            run.min_distance = run.min_distance.min(distance);
+        }
+    }
+    run.end_time = sim.time();
+    run.steps = sim.steps();
+    run.contacts_born_deep = sim.contacts_born_deep();
+    run.energy = *sim.energy();
+    Ok(run)
+}
+
+/// Both solid-sphere examples (light and heavy) run to their 1 s: through the impact, the
+/// rebound and the tube ringing after it (the heavy sphere winds the flattened tube around
+/// itself), the energy balance holds and nothing passes through.
+pub fn impact_long(ctx: &Context) -> Result<CaseReport, ValidationError> {
+    let id = "impact_long";
+    let mut report = CaseReport::new(
+        id,
+        "Paper §7 impacts run to 1 s: energy and self-contact through the rebound",
+    );
+    report.setup = format!(
+        "Scenes `examples/tube_impact_solid.toml` (0.112 kg sphere, safety 0.3) and \
+         `examples/{HEAVY}` (4.19 kg, safety 0.1), each run to its duration of 1 s with the \
+         engine's energy watch on. Every step: the energy balance error |B(t) − B(0)| / Ek(0). \
+         Every {PENETRATION_EVERY} steps: the smallest distance between a tube node and a \
+         PFacet it is not part of (nor a neighbour's), and the penetration 2r − distance \
+         beyond what the contacts carry (the largest F_n/k_n, eq 1): a penetration beyond it \
+         would be a self-contact the detection missed or elements passing through."
+    );
+    if ctx.quick {
+        report.setup.push_str(" (Not in the quick subset.)");
+    }
+    for (label, file) in [("light sphere", "tube_impact_solid.toml"), ("heavy sphere", HEAVY)] {
+        let run = long_run(file)?;
+        let d = 2.0 * run.node_radius;
+        report.checks.push(Check::absolute(
+            &format!("{label}: energy balance error max |B(t) − B(0)| / Ek(0) to 1 s"),
+            "",
+            0.0,
+            run.balance_error,
+            ENERGY_TOL,
+            "energy conservation (model.md §6), issue: ≤ 5e-3",
+        ));
+        report.checks.push(Check::absolute(
+            &format!("{label}: engine errors (instability, energy watch)"),
+            "",
+            0.0,
+            if run.engine_error.is_some() { 1.0 } else { 0.0 },
+            0.0,
+            "a stable run to 1 s",
+        ));
+        report.checks.push(Check::absolute(
+            &format!("{label}: self-penetration not carried by a contact, max over the run"),
+            "m",
+            0.0,
+            run.unexplained_penetration.max(0.0),
+            UNEXPLAINED_PENETRATION * d,
+            "contact law eq 1 (δ = F_n/k_n): nothing passes through",
+        ));
+        report.inform(
+            &format!("{label}: run"),
+            format!(
+                "{} steps to t = {:.4} s; smallest node–PFacet distance {:.3}·2r; {} contacts \
+                 found late{}",
+                run.steps,
+                run.end_time,
+                run.min_distance / d,
+                run.contacts_born_deep,
+                run.engine_error.as_ref().map_or(String::new(), |e| format!("; error: {e}"))
+            ),
+        );
+        let e = &run.energy;
+        report.inform(
+            &format!("{label}: energy at the end (J)"),
+            format!(
+                "kinetic {:.4}, elastic links {:.4}, friction {:.4}, contact births and ends \
+                 {:.2e}, released {:.2e}",
+                e.kinetic_translation + e.kinetic_rotation,
+                e.elastic_links,
+                e.friction,
+                e.contact_births,
+                e.contact_releases
+            ),
+        );
+    }
+    report.notes = "Before the large-deformation work (contacts handed over with their force, \
+        the side a contact was made on kept when skeletons cross, contacts that start or end \
+        between steps counted, a variable step integrated consistently) the heavy sphere's \
+        run went from 8.38 J to 546 J by 0.36 s and ended as 'completed'; the scenes then \
+        stopped at 0.28 s. The heavy run needs safety 0.1: the beam links' energy error grows \
+        as dt² with the large rotations of the crumpled, ringing tube (3e-2 at 1 s with safety \
+        0.3, 6e-3 with 0.15)."
         .into();
     Ok(report)
 }

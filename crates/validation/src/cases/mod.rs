@@ -88,5 +88,11 @@ pub fn cases() -> Vec<Case> {
             in_quick_subset: true,
             run: impact::impact_hollow,
         },
+        Case {
+            id: "impact_long",
+            title: "Paper §7 impacts run to 1 s: energy and self-contact through the rebound",
+            in_quick_subset: false,
+            run: impact::impact_long,
+        },
     ]
 }
