@@ -347,7 +347,7 @@ name = "cube"
 kind = "mesh"
 material = "steel"
 node_radius = 0.01
-file = "../tests/data/meshes/cube.obj"
+file = "../crates/mesh/tests/data/meshes/cube.obj"
 placement = { translate = [3, 0, 0], scale = 0.5, axis = [0, 0, 1], angle_deg = 30 }
 
 [[structures]]

@@ -235,7 +235,7 @@ force = [0, 0, 1]
 #[test]
 fn a_mesh_structure_is_read_relative_to_the_scene_file() {
     let dir = tempfile::tempdir().unwrap();
-    let meshes = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/data/meshes/cube.obj");
+    let meshes = Path::new(env!("CARGO_MANIFEST_DIR")).join("../mesh/tests/data/meshes/cube.obj");
     std::fs::create_dir(dir.path().join("meshes")).unwrap();
     std::fs::copy(meshes, dir.path().join("meshes/cube.obj")).unwrap();
     let text = format!(

@@ -4,10 +4,10 @@ use std::collections::BTreeSet;
 use std::path::PathBuf;
 
 use flexdem_geom::{TriMesh, Vec3};
-use flexdem_io::mesh::{read_mesh, MeshError};
+use flexdem_mesh::{read_mesh, MeshError};
 
 fn data(name: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../tests/data/meshes").join(name)
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data/meshes").join(name)
 }
 
 fn read(name: &str) -> TriMesh {
@@ -102,7 +102,7 @@ fn stl_gives_an_unmerged_soup_of_the_cube() {
 fn binary_stl_whose_header_starts_with_solid_is_read_as_binary() {
     let bytes = std::fs::read(data("cube_binary.stl")).unwrap();
     assert!(bytes.starts_with(b"solid"));
-    let mesh = flexdem_io::mesh::read_stl(&bytes, "cube_binary.stl").unwrap();
+    let mesh = flexdem_mesh::read_stl(&bytes, "cube_binary.stl").unwrap();
     // The first triangle of generate.py: corners 0, 3, 2 of the cube.
     assert_eq!(mesh.vertices[0], Vec3::new(0.0, 0.0, 0.0));
     assert_eq!(mesh.vertices[1], Vec3::new(0.0, 1.0, 0.0));

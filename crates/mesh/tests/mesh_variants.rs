@@ -2,7 +2,7 @@
 //! keyword case, polygons, relative indices, skipped elements and sections.
 
 use flexdem_geom::Vec3;
-use flexdem_io::mesh::{read_gts, read_medit, read_msh, read_obj, read_stl};
+use flexdem_mesh::{read_gts, read_medit, read_msh, read_obj, read_stl};
 
 /// A 2.2 binary file of one triangle, with the given byte order; node tags 7, 3, 5.
 fn msh22_binary(big_endian: bool) -> Vec<u8> {

@@ -9,8 +9,8 @@
 
 use flexdem_geom::{TriMesh, Vec3};
 
-use super::text::{parse_point, NumberedLines};
-use super::MeshError;
+use crate::text::{parse_point, NumberedLines};
+use crate::MeshError;
 
 const HEADER_BYTES: usize = 80;
 const BINARY_PREFIX_BYTES: usize = 84;

@@ -11,9 +11,9 @@ use std::collections::HashMap;
 
 use flexdem_geom::{TriMesh, Vec3};
 
-use super::msh_ascii::{self, count};
-use super::msh_binary;
-use super::MeshError;
+use crate::msh_ascii::{self, count};
+use crate::msh_binary;
+use crate::MeshError;
 
 /// Reads a Gmsh `.msh` file (2.2 or 4.1, ASCII or binary); `file` names it in errors.
 pub fn read_msh(bytes: &[u8], file: &str) -> Result<TriMesh, MeshError> {
@@ -173,7 +173,7 @@ impl MshData {
             }
             triangles.push(indices);
         }
-        Ok(super::drop_unused_vertices(&vertices, triangles))
+        Ok(crate::drop_unused_vertices(&vertices, triangles))
     }
 }
 

@@ -16,6 +16,13 @@
 //!   triangles are left to the PFacet builder;
 //! - no input makes them panic, declared counts are checked against the data before any
 //!   allocation, and a non-finite coordinate is an error naming its line (or byte offset).
+//!
+//! This crate depends on `flexdem-geom` only (for [`TriMesh`]); `flexdem-io` re-exports it as
+//! `flexdem_io::mesh` for the scene files. The readers are our own rather than `stl_io`,
+//! `tobj` or `mshio`: `stl_io` reports errors as plain `io::Error`s without line or byte
+//! offset, reads ASCII coordinates as `f32`, and reads a binary file whose header starts
+//! with "solid " as ASCII (and fails); `tobj`'s errors are unit variants without the line,
+//! and its coordinates `f32` unless a feature is on; `mshio` reads msh 4.1 only (not 2.2).
 
 mod gts;
 mod medit;

@@ -7,8 +7,8 @@
 
 use flexdem_geom::Vec3;
 
-use super::msh::{is_triangle, nodes_per_element, At, Cursor, MshData, Node, Triangle};
-use super::MeshError;
+use crate::msh::{is_triangle, nodes_per_element, At, Cursor, MshData, Node, Triangle};
+use crate::MeshError;
 
 /// Layout of binary data.
 #[derive(Clone, Copy, Debug)]

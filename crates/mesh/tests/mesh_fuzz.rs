@@ -5,7 +5,7 @@
 mod support;
 
 use flexdem_geom::TriMesh;
-use flexdem_io::mesh::{read_msh, read_stl, MeshError};
+use flexdem_mesh::{read_msh, read_stl, MeshError};
 use proptest::prelude::*;
 use support::meshes::{reader_for, valid_bytes, well_formed, READERS, VALID};
 

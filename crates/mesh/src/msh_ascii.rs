@@ -5,9 +5,9 @@
 
 use flexdem_geom::Vec3;
 
-use super::msh::{is_triangle, nodes_per_element, At, Cursor, MshData, Node, Triangle};
-use super::text;
-use super::MeshError;
+use crate::msh::{is_triangle, nodes_per_element, At, Cursor, MshData, Node, Triangle};
+use crate::text;
+use crate::MeshError;
 
 /// Whitespace-separated fields of a line, with an error unless there are `N`.
 fn fields<'a, const N: usize>(

@@ -5,7 +5,7 @@
 use std::collections::BTreeSet;
 use std::path::PathBuf;
 
-use flexdem_io::mesh::read_mesh;
+use flexdem_mesh::read_mesh;
 
 /// Where the error must point.
 enum Where {
@@ -142,7 +142,7 @@ const CASES: &[(&str, Where, &str)] = &[
 ];
 
 fn bad_dir() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../tests/data/bad_meshes")
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data/bad_meshes")
 }
 
 #[test]

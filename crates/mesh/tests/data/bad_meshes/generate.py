@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Writes the malformed meshes of this folder (run from this folder). Each must make its
 reader return an error naming the file (and the line, for text) -- see
-crates/io/tests/mesh_bad_inputs.rs for the expected messages."""
+crates/mesh/tests/mesh_bad_inputs.rs for the expected messages."""
 import struct
 
 GOOD = "../meshes/"

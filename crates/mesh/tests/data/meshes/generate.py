@@ -2,7 +2,7 @@
 """Writes the unit-cube test meshes of this folder (run from this folder).
 
 The same cube [0,1]^3 (8 corners, 12 outward-oriented triangles, each face (q0 q1 q2 q3)
-split into (q0 q1 q2) and (q0 q2 q3)) in every format flexdem-io reads. The binary Gmsh files
+split into (q0 q1 q2) and (q0 q2 q3)) in every format flexdem-mesh reads. The binary Gmsh files
 are written by gmsh itself from cube_v22_ascii.msh (gmsh 4.8.4, Debian):
     gmsh cube_v22_ascii.msh -save -format msh22 -bin -o cube_v22_binary.msh
     gmsh cube_v22_ascii.msh -save -format msh41 -o cube_v41_ascii.msh

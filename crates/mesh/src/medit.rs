@@ -6,8 +6,8 @@
 
 use flexdem_geom::{TriMesh, Vec3};
 
-use super::text::{parse_i64, parse_point, parse_usize};
-use super::{drop_unused_vertices, MeshError};
+use crate::text::{parse_i64, parse_point, parse_usize};
+use crate::{drop_unused_vertices, MeshError};
 
 /// A whitespace-separated word of the file with its line number.
 #[derive(Clone, Copy)]

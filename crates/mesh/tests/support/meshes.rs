@@ -1,15 +1,15 @@
 //! The valid test meshes and every mesh reader, shared by the mesh fuzz tests
 //! (`mesh_fuzz.rs`, proptest) and the seeded mutation fuzzer of every input
-//! (`input_fuzz.rs`).
+//! (`crates/io/tests/input_fuzz.rs`, which includes this file with `#[path]`).
 
 #![allow(dead_code)]
 
 use std::path::PathBuf;
 
 use flexdem_geom::TriMesh;
-use flexdem_io::mesh::{read_gts, read_medit, read_msh, read_obj, read_stl, MeshError};
+use flexdem_mesh::{read_gts, read_medit, read_msh, read_obj, read_stl, MeshError};
 
-/// The valid meshes of `tests/data/meshes`, one per format and variant.
+/// The valid meshes of `crates/mesh/tests/data/meshes`, one per format and variant.
 pub const VALID: [&str; 9] = [
     "cube_v22_ascii.msh",
     "cube_v22_binary.msh",
@@ -24,7 +24,9 @@ pub const VALID: [&str; 9] = [
 
 /// The bytes of a valid mesh.
 pub fn valid_bytes(name: &str) -> Vec<u8> {
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../tests/data/meshes").join(name);
+    // `../mesh` so that the path holds from flexdem-io's tests too.
+    let path =
+        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../mesh/tests/data/meshes").join(name);
     std::fs::read(path).unwrap()
 }
 

@@ -8,8 +8,8 @@
 
 use flexdem_geom::{TriMesh, Vec3};
 
-use super::text::{parse_i64, parse_point, NumberedLines};
-use super::{drop_unused_vertices, MeshError};
+use crate::text::{parse_i64, parse_point, NumberedLines};
+use crate::{drop_unused_vertices, MeshError};
 
 /// A triangle of 0-based vertex indices, unchecked (a positive index may name a vertex
 /// defined later), with the line it came from.

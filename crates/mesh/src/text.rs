@@ -3,7 +3,7 @@
 
 use flexdem_geom::Vec3;
 
-use super::MeshError;
+use crate::MeshError;
 
 /// The lines of a text, numbered from 1, with optional skipping of blank and comment lines.
 pub(crate) struct NumberedLines<'a> {

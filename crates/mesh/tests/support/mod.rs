@@ -1,0 +1,3 @@
+//! Helpers shared by the integration tests of `flexdem-mesh`.
+
+pub mod meshes;
