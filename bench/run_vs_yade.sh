@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The tube impact (examples/tube_impact_solid.toml, fixed dt = 2e-4 s) in flexdem and in YADE
+# The tube impact (examples/tube_impact_heavy.toml, fixed dt = 2e-4 s) in flexdem and in YADE
 # 2023.02a, one thread each, the same 25 untimed + 725 timed steps; prints both speeds in steps
 # per second, their ratio, and the impactor's final vertical velocity in both codes.
 #

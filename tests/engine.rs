@@ -56,7 +56,7 @@ fn a_fixed_step_above_the_critical_one_warns() {
 /// warning is raised, before the run becomes unstable.
 #[test]
 fn a_fixed_step_overtaken_by_contacts_warns_during_the_run() {
-    let scene = root_path("examples/tube_impact_solid.toml");
+    let scene = root_path("examples/tube_impact_heavy.toml");
     let scene = flexdem::io::scene::load_scene(&scene).unwrap();
     let probe = Simulation::new(scene.model.clone(), scene.settings.clone()).unwrap();
     let dt = 0.8 * probe.critical_dt();

@@ -10,9 +10,10 @@ use flexdem_geom::{Real, Vec3};
 use flexdem_integrate::{Settings, Simulation, TimeStep};
 use std::path::Path;
 
-/// The tube impact scene file (`examples/tube_impact_solid.toml`), embedded so that the
+/// The tube impact scene file (`examples/tube_impact_heavy.toml`: the 4.19 kg sphere, the
+/// scene of the YADE comparison `bench/run_vs_yade.sh`), embedded so that the
 /// benchmark runs from any folder.
-const TUBE_IMPACT_TOML: &str = include_str!("../../../examples/tube_impact_solid.toml");
+const TUBE_IMPACT_TOML: &str = include_str!("../../../examples/tube_impact_heavy.toml");
 
 /// Fixed time step of the tube impact benchmark (s), used by the YADE script too
 /// (`bench/yade/tube_impact.py`). flexdem's critical step estimate (links and contacts) is
@@ -49,7 +50,7 @@ pub const PACKING_LAYERS: usize = 10;
 /// A benchmark scene.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum SceneKind {
-    /// The paper's tube impact (§7), `examples/tube_impact_solid.toml` with a fixed step.
+    /// The paper's tube impact (§7), `examples/tube_impact_heavy.toml` with a fixed step.
     TubeImpact,
     /// A square PFacet membrane, edges pinned, under one layer of spheres, with gravity.
     Membrane,
@@ -168,14 +169,14 @@ impl SceneKind {
     }
 }
 
-/// The paper's tube impact (§7): `examples/tube_impact_solid.toml` (640-PFacet tube of
+/// The paper's tube impact (§7): `examples/tube_impact_heavy.toml` (640-PFacet tube of
 /// radius 0.1 m and node radius 2 mm, E = 1 MPa, both end rings clamped; a solid sphere of
 /// radius 0.1 m, E = 100 MPa, at 2 m/s; no gravity, no damping), with the automatic time
 /// step replaced by [`TUBE_IMPACT_DT`] so that YADE can run the same steps.
 pub fn tube_impact() -> Result<(Model, Settings), BenchError> {
     let scene = flexdem_io::scene::parse_scene(
         TUBE_IMPACT_TOML,
-        Path::new("examples/tube_impact_solid.toml"),
+        Path::new("examples/tube_impact_heavy.toml"),
     )?;
     let mut settings = scene.settings;
     settings.time_step = TimeStep::Fixed(TUBE_IMPACT_DT);

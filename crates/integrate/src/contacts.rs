@@ -510,11 +510,9 @@ impl Contacts {
         ended.clear();
         ended.extend((0..old.len()).filter(|&o| !taken[o]));
         ended.sort_unstable_by_key(|&o| (old[o].owners, o));
-        // every old contact by owners, for splits
+        // every old contact by owners, for splits: sorted when the first one is looked for
         let by_owners = &mut scratch.by_owners;
         by_owners.clear();
-        by_owners.extend(0..old.len());
-        by_owners.sort_unstable_by_key(|&o| (old[o].owners, o));
         for &n in &self.fresh {
             let c = &self.list[n];
             // the closest features of two elements may jump across an element in one step
@@ -584,6 +582,10 @@ impl Contacts {
             if !(g.overlap - approach * dt > 1e-12 * reach) {
                 report.born_energy += birth_jump(c, &g, dt); // found on time
                 continue;
+            }
+            if by_owners.is_empty() {
+                by_owners.extend(0..old.len());
+                by_owners.sort_unstable_by_key(|&o| (old[o].owners, o));
             }
             if near(by_owners, None).is_some() {
                 // a split: made with no force, on its own normal

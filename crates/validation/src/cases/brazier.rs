@@ -31,6 +31,8 @@ const STIFFNESS_TOL: Real = 0.03;
 const BUCKLING_TOL: Real = 0.10;
 /// Tolerance of the initial bending stiffness against the one the tension test predicts.
 const BENDING_TOL: Real = 0.03;
+/// Energy balance error during the post-buckling winding, over the energy scale.
+const WINDING_ENERGY_TOL: Real = 1e-2;
 /// Self-penetration after winding beyond the largest contact overlap F_n/k_n, as a fraction
 /// of the wall thickness 2r: a deeper one would be a pair the contact detection missed.
 const UNEXPLAINED_PENETRATION: Real = 0.1;
@@ -105,6 +107,14 @@ pub fn run_tube(
             (penetration - final_state.largest_overlap).max(0.0),
             UNEXPLAINED_PENETRATION * d,
             "contact law eq 1 (δ = F_n/k_n): no missed self-contact",
+        ));
+        report.checks.push(Check::absolute(
+            "energy balance error during the winding, max |B(t) − B(start)| / energy scale",
+            "",
+            0.0,
+            final_state.balance_error,
+            WINDING_ENERGY_TOL,
+            "energy conservation (the end moment's work counted), issue: ≤ 1e-2",
         ));
         report.inform(
             "self-penetration 2r − min distance node–PFacet at the end",

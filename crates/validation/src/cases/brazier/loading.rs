@@ -173,6 +173,8 @@ pub struct FinalState {
     pub contacts: usize,
     /// End rotation (rad).
     pub rotation: Real,
+    /// Largest |B(t) − B(start)| over the winding, over the energy scale (`EnergyWatch`).
+    pub balance_error: Real,
 }
 
 /// What the bending run measured.
@@ -212,9 +214,13 @@ pub struct BendingResult {
 fn wind(run: &mut Bending, periods: Real) -> Result<FinalState, ValidationError> {
     let end = run.sim.time() + periods * run.period;
     let mut min_during = Real::INFINITY;
+    let balance0 = run.sim.energy().balance();
+    let mut balance_error: Real = 0.0;
     while run.sim.time() < end {
         run.advance(0.0)?;
         min_during = min_during.min(min_self_distance(&run.sim.model));
+        let change = (run.sim.energy().balance() - balance0).abs();
+        balance_error = balance_error.max(change / run.sim.energy_watch().scale);
     }
     let largest_overlap = run
         .sim
@@ -229,6 +235,7 @@ fn wind(run: &mut Bending, periods: Real) -> Result<FinalState, ValidationError>
         largest_overlap,
         contacts: run.sim.contacts.list.len(),
         rotation: run.rotation,
+        balance_error,
     })
 }
 
