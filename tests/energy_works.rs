@@ -67,6 +67,24 @@ fn the_work_of_the_force_hook_is_counted() {
     assert!(sim.relative_balance_error().abs() < 1e-9);
 }
 
+/// Runs until sphere `s` (mass `mass`) has been hit and left its contact: it leaves at 2v,
+/// as from an infinitely heavy body, the boundary's work is its kinetic energy 2·m·v², and the
+/// balance closes exactly (linear springs, a constant step).
+fn hit_and_leave(sim: &mut Simulation, s: u32, mass: Real, v: Real) {
+    while sim.contacts.list.is_empty() {
+        sim.step().unwrap();
+    }
+    while !sim.contacts.list.is_empty() {
+        sim.step().unwrap();
+    }
+    sim.run(10).unwrap();
+    let e = sim.energy();
+    let speed = sim.model.particles.vel[s as usize].z;
+    assert!((speed / (2.0 * v) - 1.0).abs() < 1e-2, "the sphere leaves at {speed}");
+    assert!((e.boundary_work / (2.0 * mass * v * v) - 1.0).abs() < 2e-2, "{e:?}");
+    assert!(sim.relative_balance_error().abs() < 1e-9, "{e:?}");
+}
+
 /// A sphere at rest hit by a wall moving at v (no gravity, no friction loss in a head-on
 /// impact): it leaves at 2v, as from an infinitely heavy body, and the wall's work is its
 /// kinetic energy 2·m·v².
@@ -82,18 +100,7 @@ fn a_moving_wall_does_the_work_it_gives_a_sphere() {
     // a fixed step: the balance is exact for linear springs at a constant step
     let settings = fixed(2e-4);
     let mut sim = Simulation::new(model, settings).unwrap();
-    while sim.contacts.list.is_empty() {
-        sim.step().unwrap();
-    }
-    while !sim.contacts.list.is_empty() {
-        sim.step().unwrap();
-    }
-    sim.run(10).unwrap();
-    let e = sim.energy();
-    let speed = sim.model.particles.vel[s as usize].z;
-    assert!((speed / (2.0 * v) - 1.0).abs() < 1e-2, "the sphere leaves at {speed}");
-    assert!((e.boundary_work / (2.0 * mass * v * v) - 1.0).abs() < 2e-2, "{e:?}");
-    assert!(sim.relative_balance_error().abs() < 1e-9, "{e:?}");
+    hit_and_leave(&mut sim, s, mass, v);
 }
 
 /// The same impact from a sphere whose velocity is imposed (blocked DOFs): the support that
@@ -110,17 +117,7 @@ fn an_imposed_velocity_does_the_work_it_gives() {
     let mass = model.particles.mass[s as usize];
     let settings = fixed(2e-4);
     let mut sim = Simulation::new(model, settings).unwrap();
-    while sim.contacts.list.is_empty() {
-        sim.step().unwrap();
-    }
-    while !sim.contacts.list.is_empty() {
-        sim.step().unwrap();
-    }
-    let e = sim.energy();
-    let speed = sim.model.particles.vel[s as usize].z;
-    assert!((speed / (2.0 * v) - 1.0).abs() < 1e-2, "the sphere leaves at {speed}");
-    assert!((e.boundary_work / (2.0 * mass * v * v) - 1.0).abs() < 2e-2, "{e:?}");
-    assert!(sim.relative_balance_error().abs() < 1e-9, "{e:?}");
+    hit_and_leave(&mut sim, s, mass, v);
 }
 
 /// A one-link cantilever twisted by an imposed spin at its clamped end: the support's work
