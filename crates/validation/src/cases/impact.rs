@@ -647,8 +647,15 @@ fn long_run(file: &str) -> Result<LongRun, ValidationError> {
                 .iter()
                 .map(|c| c.forces.normal_force / c.params.kn + c.state.overlap_offset)
                 .fold(0.0, Real::max);
+            let by_force = sim
+                .contacts
+                .list
+                .iter()
+                .map(|c| c.forces.normal_force / c.params.kn)
+                .fold(0.0, Real::max);
             let penetration = 2.0 * node_radius - distance;
             run.unexplained_penetration = run.unexplained_penetration.max(penetration - carried);
+            run.beyond_force = run.beyond_force.max(penetration - by_force);
             run.min_distance = run.min_distance.min(distance);
         }
     }
