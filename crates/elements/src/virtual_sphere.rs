@@ -205,13 +205,30 @@ pub struct ContactGeometry {
 ///   the side it came from, and grows the further through it has gone.
 ///
 /// Both branches give `δ = r1 + r2` where `d = 0`. YADE has no such rule: its normal is
-/// `d/|d|` and flips when two elements cross.
+/// `d/|d|` and flips when two elements cross. For two spheres `n₀` is right (any direction
+/// is); the sites of elements need the normal of their features,
+/// [`contact_geometry_crossing`] with [`crossing_normal`], for the crossed force to be
+/// conservative.
 pub fn contact_geometry(
     s1: &VirtualSphere,
     r1: Real,
     s2: &VirtualSphere,
     r2: Real,
     previous_normal: &Vec3,
+) -> ContactGeometry {
+    contact_geometry_crossing(s1, r1, s2, r2, previous_normal, || *previous_normal)
+}
+
+/// [`contact_geometry`] where the normal of crossed skeletons (`d·n₀ ≤ 0`) is `crossing()`
+/// (a unit vector with `crossing()·n₀ ≥ 0`, see [`crossing_normal`]) instead of `n₀`:
+/// `δ = r1 + r2 − d·n`, with `n = crossing()` evaluated only when the skeletons have crossed.
+pub fn contact_geometry_crossing(
+    s1: &VirtualSphere,
+    r1: Real,
+    s2: &VirtualSphere,
+    r2: Real,
+    previous_normal: &Vec3,
+    crossing: impl FnOnce() -> Vec3,
 ) -> ContactGeometry {
     let d = s2.center - s1.center;
     let dist = d.norm();
@@ -220,7 +237,8 @@ pub fn contact_geometry(
     let (normal, separation) = if dist > 1e-14 * scale && along > 0.0 {
         (d / dist, dist)
     } else {
-        (*previous_normal, along)
+        let n = crossing();
+        (n, d.dot(&n))
     };
     let overlap = r1 + r2 - separation;
     let point = s1.center + normal * (r1 - 0.5 * overlap);
@@ -232,6 +250,62 @@ pub fn contact_geometry(
         point,
         relative_velocity: v2 - v1,
         spin_about_normal: 0.5 * normal.dot(&(s1.angular_velocity + s2.angular_velocity)),
+    }
+}
+
+/// The normal of two crossed sites (model: crossing elements): the normal of the carriers
+/// of their features, oriented like the previous normal `n₀`:
+/// - a face on either side (node–face, edge–face): the face's normal
+///   `(x₁ − x₀) × (x₂ − x₀)/|…|`; face–face (intersecting triangles): the face normal
+///   closer to `±n₀`;
+/// - edge–edge: the lines' common perpendicular `a × b/|a × b|` (`a`, `b` the edges'
+///   directions), or `n₀` less its components along them when the edges are parallel;
+/// - particle–edge: `n₀` less its component along the edge;
+/// - otherwise (particle–particle) `n₀`.
+///
+/// `d·n` is then the signed distance of the carriers (plane, pair of lines) whose gradient
+/// with respect to the nodes is `n` shared by the sites' weights, the distribution
+/// [`distribute_force`] applies: the force of a crossed contact derives from its elastic
+/// energy `½kn·δ²` and neither makes nor loses energy. A kept `n₀` does not: `d·n₀` changes
+/// as the closest points slide along the features, which the force does not see.
+pub fn crossing_normal(site1: &Site, site2: &Site, pos: &[Vec3], previous: &Vec3) -> Vec3 {
+    let node = |site: &Site, slot: usize| pos[site.nodes[slot] as usize];
+    let face_normal = |site: &Site| {
+        (node(site, 1) - node(site, 0)).cross(&(node(site, 2) - node(site, 0))).try_normalize(0.0)
+    };
+    let direction = |site: &Site| (node(site, 1) - node(site, 0)).try_normalize(0.0);
+    let less_along = |n: Vec3, a: Option<Vec3>| match a {
+        Some(a) => n - a * n.dot(&a),
+        None => n,
+    };
+    let candidate = match (site1.feature, site2.feature) {
+        (Feature::Face(_), Feature::Face(_)) => match (face_normal(site1), face_normal(site2)) {
+            (Some(a), Some(b)) => {
+                Some(if a.dot(previous).abs() >= b.dot(previous).abs() { a } else { b })
+            }
+            (a, b) => a.or(b),
+        },
+        (Feature::Face(_), _) => face_normal(site1),
+        (_, Feature::Face(_)) => face_normal(site2),
+        (Feature::Edge(_), Feature::Edge(_)) => match (direction(site1), direction(site2)) {
+            (Some(a), Some(b)) => {
+                let c = a.cross(&b);
+                if c.norm() > 1e-6 {
+                    Some(c)
+                } else {
+                    Some(less_along(*previous, Some(a)))
+                }
+            }
+            (a, b) => Some(less_along(less_along(*previous, a), b)),
+        },
+        (Feature::Edge(_), Feature::Particle(_)) => Some(less_along(*previous, direction(site1))),
+        (Feature::Particle(_), Feature::Edge(_)) => Some(less_along(*previous, direction(site2))),
+        _ => None,
+    };
+    match candidate.and_then(|n| n.try_normalize(1e-12)) {
+        Some(n) if n.dot(previous) < 0.0 => -n,
+        Some(n) => n,
+        None => *previous,
     }
 }
 
