@@ -13,8 +13,8 @@ use flexdem_contact::{
 use flexdem_elements::pairs::{self, Candidate, ConnectionRef, PFacetRef, SphereRef};
 use flexdem_elements::touching::{dominates, Element, ElementCandidate, Topology};
 use flexdem_elements::virtual_sphere::{
-    contact_geometry, distribute_force, virtual_sphere, ContactGeometry, Feature, Kinematics,
-    NodeLoad, Site, VirtualSphere,
+    contact_geometry_crossing, crossing_normal, distribute_force, virtual_sphere, ContactGeometry,
+    Feature, Kinematics, NodeLoad, Site, VirtualSphere,
 };
 use flexdem_elements::{Adjacency, Model};
 use flexdem_geom::{Real, Vec3};
@@ -772,7 +772,14 @@ fn geometry(
         }
         _ => {
             let vs1 = virtual_sphere(&c.site1, k);
-            let g = contact_geometry(&vs1, c.site1.radius, &vs2, c.site2.radius, &c.state.normal);
+            let g = contact_geometry_crossing(
+                &vs1,
+                c.site1.radius,
+                &vs2,
+                c.site2.radius,
+                &c.state.normal,
+                || crossing_normal(&c.site1, &c.site2, k.pos, &c.state.normal),
+            );
             (vs1, vs2, g)
         }
     }
