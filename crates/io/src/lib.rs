@@ -2,8 +2,11 @@
 //! and checkpoints.
 
 pub mod checkpoint;
-pub mod output;
 pub mod scene;
+
+/// Output of a run (VTK, CSV, PNG charts): the `flexdem-output` crate, re-exported so that
+/// `flexdem_io::output::Output` and the other paths keep working.
+pub use flexdem_output as output;
 
 /// Triangle-mesh import (Gmsh msh 2.2/4.1, STL, OBJ, GTS, MEDIT): the `flexdem-mesh` crate,
 /// re-exported so that `flexdem_io::mesh::read_mesh` and the other paths keep working.

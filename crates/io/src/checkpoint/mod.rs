@@ -47,6 +47,8 @@ mod atomic;
 mod check;
 
 use crate::output::OutputSettings;
+/// What the output had written, stored in checkpoints (defined by `flexdem-output`).
+pub use flexdem_output::OutputProgress;
 use crate::scene::RunLength;
 use flexdem_integrate::{Simulation, SimulationError, Snapshot};
 use serde::{Deserialize, Serialize};
@@ -80,15 +82,6 @@ pub struct Checkpoint {
     pub output_progress: OutputProgress,
 }
 
-/// What the output of a run has written so far, so that a resumed run continues the same
-/// VTK series and CSV file.
-#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
-pub struct OutputProgress {
-    /// The VTK frames written: (step, simulated time in s) of each, in order.
-    pub vtk_frames: Vec<(u64, f64)>,
-    /// Number of data rows written to the CSV series (header not counted).
-    pub series_rows: u64,
-}
 
 /// The parts of a [`Checkpoint`] other than the simulation, returned by
 /// [`Checkpoint::into_simulation`].

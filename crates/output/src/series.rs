@@ -1,7 +1,7 @@
 //! What a run records: the output settings, the quantities of the CSV series, their column
 //! names (with units) and their values taken from a simulation.
 
-use super::OutputError;
+use crate::error::OutputError;
 use flexdem_geom::{Real, Vec3};
 use flexdem_integrate::Simulation;
 use serde::{Deserialize, Serialize};

@@ -1,7 +1,7 @@
 //! File system helpers: the output folder, and writes that never leave a half-written file
 //! in place of a good one.
 
-use super::OutputError;
+use crate::error::OutputError;
 use std::fs;
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -32,7 +32,7 @@ pub(crate) fn temporary_path(path: &Path) -> PathBuf {
 }
 
 /// Moves the finished temporary file `temp` over `path`; removes `temp` if that fails.
-pub(crate) fn replace_with(temp: &Path, path: &Path) -> Result<(), OutputError> {
+fn replace_with(temp: &Path, path: &Path) -> Result<(), OutputError> {
     fs::rename(temp, path).map_err(|source| {
         let _ = fs::remove_file(temp);
         OutputError::Write { path: path.to_path_buf(), source }

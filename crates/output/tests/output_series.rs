@@ -6,7 +6,7 @@ use flexdem_elements::builders::{chain, straight_line, StructureOptions};
 use flexdem_elements::Model;
 use flexdem_geom::{Real, Vec3};
 use flexdem_integrate::{Settings, Simulation};
-use flexdem_io::output::{
+use flexdem_output::{
     format_number, Output, OutputError, OutputSettings, Quantity, SeriesSpec,
 };
 use std::path::Path;

@@ -1,8 +1,8 @@
 //! The four parts of a VTK frame, built from a simulation's public state: particles,
 //! connections, PFacets and contacts (the data each holds is listed in the module doc of
-//! [`crate::output`]).
+//! [`crate::Output`]).
 
-use super::vtk::{CellKind, DataArray, PolyData};
+use crate::vtk::{CellKind, DataArray, PolyData};
 use flexdem_contact::LinkStatus;
 use flexdem_elements::virtual_sphere::{Feature, Site};
 use flexdem_elements::{ParticleKind, NO_STRUCTURE};

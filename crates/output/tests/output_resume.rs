@@ -7,8 +7,8 @@ use flexdem_elements::builders::{chain, straight_line, StructureOptions};
 use flexdem_elements::Model;
 use flexdem_geom::Vec3;
 use flexdem_integrate::{Settings, Simulation};
-use flexdem_io::checkpoint::OutputProgress;
-use flexdem_io::output::{Output, OutputError, OutputSettings, Quantity, SeriesSpec, CSV_FILE};
+use flexdem_output::OutputProgress;
+use flexdem_output::{Output, OutputError, OutputSettings, Quantity, SeriesSpec, CSV_FILE};
 use std::path::Path;
 
 /// A cable hanging from its first node (blocked) swinging down onto a sphere on a wall.

@@ -7,7 +7,7 @@ use flexdem_elements::builders::{chain, membrane_rectangle, straight_line, Struc
 use flexdem_elements::{Model, ParticleKind, NO_STRUCTURE};
 use flexdem_geom::{Real, Vec3};
 use flexdem_integrate::{Settings, Simulation};
-use flexdem_io::output::{base64_encode, Output, OutputSettings};
+use flexdem_output::{Output, OutputSettings};
 use std::path::Path;
 use vtkio::model::{Attribute, DataSet, IOBuffer, Piece, PolyDataPiece, VertexNumbers};
 
@@ -307,21 +307,4 @@ fn a_model_without_structures_or_contacts_writes_empty_parts() {
         assert_eq!(piece.num_cells(), 0, "{part}");
     }
     assert_eq!(read_piece(&dir.path().join("particles_000001.vtp")).num_points(), 1);
-}
-
-#[test]
-fn base64_matches_the_rfc_4648_test_vectors() {
-    let cases = [
-        ("", ""),
-        ("f", "Zg=="),
-        ("fo", "Zm8="),
-        ("foo", "Zm9v"),
-        ("foob", "Zm9vYg=="),
-        ("fooba", "Zm9vYmE="),
-        ("foobar", "Zm9vYmFy"),
-    ];
-    for (plain, encoded) in cases {
-        assert_eq!(base64_encode(plain.as_bytes()), encoded);
-    }
-    assert_eq!(base64_encode(&[0xff, 0xfe, 0x3e]), "//4+");
 }

@@ -1,60 +1,17 @@
-//! Output of a run: VTK XML PolyData frames for ParaView tied together by a `.pvd` time series,
-//! a CSV series of chosen quantities, and a PNG plot of them at the end.
-//!
-//! File layout in [`OutputSettings::directory`], for a frame at step `N` (6 digits or more):
-//!
-//! - `particles_N.vtp`: every particle (free spheres and structure nodes) as a point with a
-//!   vertex cell; point data `id`, `radius`, `velocity`, `angular_velocity`, `force` (total
-//!   force at the last step), `kind` (0 sphere, 1 node), `structure` (−1 for free spheres),
-//!   `material`.
-//! - `connections_N.vtp`: the nodes of connections as points (point data `id`: the particle
-//!   id) and one line cell per connection; cell data `radius`, `axial_force` (the link's normal
-//!   force, **compression positive, tension negative**, as everywhere in flexdem),
-//!   `shear_force`, `broken` (0/1), `status` (0 cohesive, 1 frictional, 2 broken),
-//!   `structure`, `material`.
-//! - `pfacets_N.vtp`: the nodes of PFacets as points (point data `id`) and one triangle per
-//!   PFacet; cell data `radius`, `structure`, `material`.
-//! - `contacts_N.vtp`: one line per contact from the centre of site 1 to the centre of site 2
-//!   (the contact point for a wall site); cell data `normal_force` (compression positive),
-//!   `force` (on body 2), `shear_force`, `point` (the contact point), `kind1`, `kind2` (0
-//!   particle, 1 edge, 2 face, 3 wall).
-//! - `flexdem.pvd`: the time series, four parts per frame at the simulated time; ParaView
-//!   opens it as a multiblock data set with one block per part. It is rewritten after each of
-//!   the first [`PVD_REWRITE_PERIOD`] frames, then every [`PVD_REWRITE_PERIOD`] frames, and by
-//!   [`Output::finish`].
-//! - `series.csv`: a header row `time_s,step,...` with units in the column names, then one row
-//!   per recorded step (see [`series_columns`]).
-//! - `series.png`: one panel per series, time on the x axis.
-//!
-//! Data arrays are Float64/Int32/Int64/UInt8, little-endian, base64 inline binary
-//! (`header_type="UInt64"`), so values round-trip exactly. Every file but the CSV is written
-//! to a temporary file in the same folder and renamed over the old one, so a failed write
-//! leaves the files already written intact; CSV rows are appended and flushed one by one.
+//! [`Output`]: writes the frames, the series and the plot of a run as it goes, and continues
+//! them after a checkpoint.
 
-mod files;
-pub mod font;
-mod frames;
-mod plot;
-mod pvd;
-mod series;
-mod table;
-mod vtk;
-
-pub use frames::{connections_polydata, contacts_polydata, particles_polydata, pfacets_polydata};
-pub use plot::{plot_series, tick_label, tick_step, ticks};
-pub use pvd::{pvd_xml, PvdEntry};
-pub use series::{
-    header_columns, row_values, series_columns, series_values, validate_series, OutputSettings,
-    Quantity, SeriesSpec,
-};
-pub use table::{format_number, CsvSeries};
-pub use vtk::{base64_encode, ArrayValues, CellKind, DataArray, PolyData};
-
-use crate::checkpoint::OutputProgress;
+use crate::error::OutputError;
+use crate::files;
+use crate::frames::{connections_polydata, contacts_polydata, particles_polydata, pfacets_polydata};
+use crate::pvd::{pvd_xml, PvdEntry};
+use crate::series::{header_columns, row_values, validate_series, OutputSettings, SeriesSpec};
+use crate::table::CsvSeries;
 use flexdem_geom::Real;
 use flexdem_integrate::Simulation;
+use serde::{Deserialize, Serialize};
 use std::collections::HashSet;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// Name of the `.pvd` time series in the output folder.
 pub const PVD_FILE: &str = "flexdem.pvd";
@@ -67,59 +24,15 @@ pub const PLOT_FILE: &str = "series.png";
 /// many (so a long run does not rewrite a growing file each frame), and at the end.
 pub const PVD_REWRITE_PERIOD: usize = 64;
 
-/// Why output failed; each names the file or setting and the cause.
-#[derive(Debug, thiserror::Error)]
-pub enum OutputError {
-    /// The output folder could not be created (or is not a folder).
-    #[error("cannot create the output folder {path}: {source}")]
-    Directory {
-        /// The folder.
-        path: PathBuf,
-        /// The cause.
-        source: std::io::Error,
-    },
-    /// A file could not be written.
-    #[error("cannot write {path}: {source}")]
-    Write {
-        /// The file.
-        path: PathBuf,
-        /// The cause.
-        source: std::io::Error,
-    },
-    /// The plot could not be drawn.
-    #[error("cannot draw the plot {path}: {message}")]
-    Plot {
-        /// The PNG file.
-        path: PathBuf,
-        /// The cause.
-        message: String,
-    },
-    /// A series is invalid for this simulation.
-    #[error("output series '{series}': {problem}")]
-    Series {
-        /// The series' name.
-        series: String,
-        /// What is wrong.
-        problem: String,
-    },
-    /// The output of an earlier run cannot be continued (see [`Output::resume`]).
-    #[error("cannot continue the output in {path}: {problem}")]
-    Resume {
-        /// The file that does not match the checkpoint.
-        path: PathBuf,
-        /// What does not match.
-        problem: String,
-    },
-    /// An output setting is invalid.
-    #[error("output setting {what} = {value}: expected {expected}")]
-    Setting {
-        /// The setting.
-        what: String,
-        /// Its value.
-        value: String,
-        /// What is accepted.
-        expected: String,
-    },
+/// What the output of a run has written so far, so that a resumed run continues the same
+/// VTK series and CSV file (stored in checkpoints; see [`Output::progress`] and
+/// [`Output::resume`]).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct OutputProgress {
+    /// The VTK frames written: (step, simulated time in s) of each, in order.
+    pub vtk_frames: Vec<(u64, f64)>,
+    /// Number of data rows written to the CSV series (header not counted).
+    pub series_rows: u64,
 }
 
 /// What a run wrote.
@@ -283,7 +196,7 @@ impl Output {
         }
         if self.settings.plot {
             let path = self.settings.directory.join(PLOT_FILE);
-            plot_series(&path, &self.settings.series, &self.rows)?;
+            draw_plot(&path, &self.settings.series, &self.rows)?;
             self.note_file(path);
         }
         Ok(OutputReport {
@@ -379,6 +292,21 @@ fn check_settings(settings: &OutputSettings, sim: &Simulation) -> Result<(), Out
     }
     validate_series(&settings.series, sim)?;
     Ok(())
+}
+
+/// Draws `series.png` ([`crate::plot_series`]).
+#[cfg(feature = "plot")]
+fn draw_plot(path: &Path, series: &[SeriesSpec], rows: &[Vec<Real>]) -> Result<(), OutputError> {
+    crate::plot::plot_series(path, series, rows)
+}
+
+/// Without the `plot` feature a plot cannot be drawn: an error saying so.
+#[cfg(not(feature = "plot"))]
+fn draw_plot(path: &Path, _: &[SeriesSpec], _: &[Vec<Real>]) -> Result<(), OutputError> {
+    Err(OutputError::Plot {
+        path: path.to_path_buf(),
+        message: "this build of flexdem-output has no `plot` feature (plotters)".into(),
+    })
 }
 
 /// The path of the `.pvd` file for `settings`.

@@ -1,6 +1,6 @@
 //! The `.pvd` collection file that makes ParaView read the frames as one time series.
 
-use super::vtk::escape_attribute;
+use crate::vtk::escape_attribute;
 use flexdem_geom::Real;
 
 /// One data set of the time series: a part of a frame.
