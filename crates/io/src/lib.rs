@@ -2,7 +2,11 @@
 //! and checkpoints.
 
 pub mod checkpoint;
-pub mod scene;
+
+/// Scene files (TOML → model, settings, loads, output settings, run length): the
+/// `flexdem-scene` crate, re-exported so that `flexdem_io::scene::load_scene` and the other
+/// paths keep working.
+pub use flexdem_scene as scene;
 
 /// Output of a run (VTK, CSV, PNG charts): the `flexdem-output` crate, re-exported so that
 /// `flexdem_io::output::Output` and the other paths keep working.

@@ -171,8 +171,7 @@ impl Figure {
         register_font().map_err(fail)?;
         let temp = crate::files::temporary_path(path);
         let drawn = (|| -> Result<(), String> {
-            let root =
-                BitMapBackend::new(&temp, (self.width, self.height())).into_drawing_area();
+            let root = BitMapBackend::new(&temp, (self.width, self.height())).into_drawing_area();
             root.fill(&WHITE).map_err(|e| e.to_string())?;
             let areas = root.split_evenly((self.charts.len().max(1), 1));
             for (area, chart) in areas.iter().zip(&self.charts) {
@@ -237,7 +236,8 @@ fn superscript(exponent: i32) -> String {
 fn tick_text(v: f64, span: f64, labels: usize) -> String {
     let finest = (span / labels as f64).abs();
     let v = if v.abs() < 1e-9 * span.abs() { 0.0 } else { v };
-    let step_exp = if finest > 0.0 && finest.is_finite() { finest.log10().floor() as i32 } else { 0 };
+    let step_exp =
+        if finest > 0.0 && finest.is_finite() { finest.log10().floor() as i32 } else { 0 };
     let trim = |s: String| -> String {
         if s.contains('.') {
             s.trim_end_matches('0').trim_end_matches('.').to_string()
@@ -339,12 +339,10 @@ fn draw_chart<DB: DrawingBackend>(
         for (r, run) in finite_runs(&curve.points).into_iter().enumerate() {
             let drawn = match curve.style {
                 CurveStyle::Line => cc.draw_series(LineSeries::new(run, style)),
-                CurveStyle::Dashed => {
-                    cc.draw_series(DashedLineSeries::new(run, DASH, GAP, style))
+                CurveStyle::Dashed => cc.draw_series(DashedLineSeries::new(run, DASH, GAP, style)),
+                CurveStyle::Points => {
+                    cc.draw_series(run.into_iter().map(|p| Circle::new(p, 4, color.filled())))
                 }
-                CurveStyle::Points => cc.draw_series(
-                    run.into_iter().map(|p| Circle::new(p, 4, color.filled())),
-                ),
             }
             .map_err(err)?;
             if r == 0 && !curve.label.is_empty() {

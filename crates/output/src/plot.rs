@@ -2,8 +2,8 @@
 //! one line per column with a legend.
 
 use crate::chart::{Curve, CurveStyle, Figure, LineChart};
-use crate::series::{series_columns, Quantity, SeriesSpec};
 use crate::error::OutputError;
+use crate::series::{series_columns, Quantity, SeriesSpec};
 use flexdem_geom::Real;
 use std::path::Path;
 

@@ -1,7 +1,7 @@
 //! The CSV series file: a header row, then rows appended and flushed one by one.
 
-use crate::files::write_atomically;
 use crate::error::OutputError;
+use crate::files::write_atomically;
 use flexdem_geom::Real;
 use std::fs::{File, OpenOptions};
 use std::io::{BufWriter, Write};

@@ -3,7 +3,9 @@
 
 use crate::error::OutputError;
 use crate::files;
-use crate::frames::{connections_polydata, contacts_polydata, particles_polydata, pfacets_polydata};
+use crate::frames::{
+    connections_polydata, contacts_polydata, particles_polydata, pfacets_polydata,
+};
 use crate::pvd::{pvd_xml, PvdEntry};
 use crate::series::{header_columns, row_values, validate_series, OutputSettings, SeriesSpec};
 use crate::table::CsvSeries;

@@ -6,9 +6,7 @@ use flexdem_elements::builders::{chain, straight_line, StructureOptions};
 use flexdem_elements::Model;
 use flexdem_geom::{Real, Vec3};
 use flexdem_integrate::{Settings, Simulation};
-use flexdem_output::{
-    format_number, Output, OutputError, OutputSettings, Quantity, SeriesSpec,
-};
+use flexdem_output::{format_number, Output, OutputError, OutputSettings, Quantity, SeriesSpec};
 use std::path::Path;
 
 /// A cable hanging from its first node (blocked) and a free sphere on a wall.

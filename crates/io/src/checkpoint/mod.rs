@@ -46,11 +46,11 @@
 mod atomic;
 mod check;
 
-use crate::output::OutputSettings;
+use flexdem_integrate::{Simulation, SimulationError, Snapshot};
 /// What the output had written, stored in checkpoints (defined by `flexdem-output`).
 pub use flexdem_output::OutputProgress;
-use crate::scene::RunLength;
-use flexdem_integrate::{Simulation, SimulationError, Snapshot};
+use flexdem_output::OutputSettings;
+use flexdem_scene::RunLength;
 use serde::{Deserialize, Serialize};
 use std::fs::File;
 use std::io::{self, Read};
@@ -81,7 +81,6 @@ pub struct Checkpoint {
     /// What the output had written when the checkpoint was taken.
     pub output_progress: OutputProgress,
 }
-
 
 /// The parts of a [`Checkpoint`] other than the simulation, returned by
 /// [`Checkpoint::into_simulation`].

@@ -2,7 +2,7 @@
 //! NAME.toml fails with a message containing every fragment of NAME.expected, the first of
 //! which is "NAME.toml:LINE:" (file and line of the error).
 
-use flexdem_io::scene::{load_scene, parse_scene, SceneError};
+use flexdem_scene::{load_scene, parse_scene, SceneError};
 use std::path::{Path, PathBuf};
 
 fn corpus() -> PathBuf {

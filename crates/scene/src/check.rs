@@ -1,8 +1,8 @@
 //! Checks of single values, each giving a located error that names the key and what is
 //! expected.
 
-use super::error::{Ctx, SceneError};
-use super::schema::{S, V3};
+use crate::error::{Ctx, SceneError};
+use crate::schema::{S, V3};
 use flexdem_geom::{Real, Vec3};
 
 impl Ctx<'_> {

@@ -2,8 +2,8 @@
 
 use flexdem_elements::{Dofs, ParticleKind};
 use flexdem_integrate::{Simulation, TimeStep};
-use flexdem_io::output::Quantity;
-use flexdem_io::scene::{load_scene, RunLength, Scene};
+use flexdem_output::Quantity;
+use flexdem_scene::{load_scene, RunLength, Scene};
 use std::path::PathBuf;
 
 fn example(name: &str) -> PathBuf {

@@ -1,9 +1,9 @@
 //! `[output]` → [`OutputSettings`]: folder, frequencies and the CSV series.
 
-use super::build::Builder;
-use super::error::{unknown_name, SceneError};
-use super::schema::{OutputSpec, S};
-use crate::output::{OutputSettings, Quantity, SeriesSpec};
+use crate::builder::Builder;
+use crate::error::{unknown_name, SceneError};
+use crate::schema::{OutputSpec, S};
+use flexdem_output::{OutputSettings, Quantity, SeriesSpec};
 
 /// The series quantities a scene may ask for.
 const QUANTITIES: [&str; 7] =

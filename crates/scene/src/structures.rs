@@ -2,15 +2,16 @@
 //! velocity. Each structure is built with its lengths scaled, then moved rigidly (rotation and
 //! translation), which keeps rest lengths and lumped masses exact.
 
-use super::build::Builder;
-use super::error::{unknown_name, Ctx, SceneError};
-use super::memory;
-use super::placement::Placement;
-use super::schema::{PlacementSpec, StructureSpec, S, V3};
-use crate::mesh::read_mesh;
+use crate::builder::Builder;
+use crate::built::{BuiltStructure, Layout};
+use crate::error::{unknown_name, Ctx, SceneError};
+use crate::memory;
+use crate::placement::Placement;
+use crate::schema::{PlacementSpec, StructureSpec, S, V3};
 use flexdem_elements::builders::{self, ShellBase};
 use flexdem_elements::{MassLumping, StructureId, StructureOptions};
 use flexdem_geom::{Real, TriMesh, Vec3};
+use flexdem_mesh::read_mesh;
 use std::ops::Range;
 
 /// The kinds of structure and the keys each takes besides the common ones.
@@ -28,29 +29,6 @@ const KINDS: [(&str, &[&str]); 8] = [
 /// Largest number of nodes a scene may ask of one structure (a guard against typos that would
 /// exhaust memory).
 pub const MAX_STRUCTURE_NODES: usize = 2_000_000;
-
-/// How a structure's nodes are laid out, for selections by side.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum Layout {
-    /// A polyline (chain, helix): node 0 first, last node last.
-    Line,
-    /// A grid of `n_u × n_v` cells (net, membrane).
-    Grid { n_u: usize, n_v: usize },
-    /// A disc with `rings` rings (outer ring last).
-    Disc { rings: usize },
-    /// A tube of `along + 1` rings of `around` nodes.
-    Tube { around: usize, along: usize },
-    /// No sides (sphere shell, mesh).
-    Unstructured,
-}
-
-/// A structure built from the scene, for selections.
-#[derive(Clone, Debug)]
-pub(crate) struct BuiltStructure {
-    pub name: String,
-    pub id: StructureId,
-    pub layout: Layout,
-}
 
 impl StructureSpec {
     /// The kind-specific keys that are present, with their spans.

@@ -2,32 +2,19 @@
 //! order within each section), then boundary conditions, loads and outputs, which select
 //! what was built.
 
-use super::error::{unknown_name, Ctx, SceneError};
-use super::schema::{
+use crate::builder::Builder;
+use crate::error::{unknown_name, Ctx, SceneError};
+use crate::run_length::{check_step_count, RunLength};
+use crate::scene::{Scene, MAX_THREADS};
+use crate::schema::{
     BoundarySpec, Dt, LoadSpec, MaterialSpec, SceneFile, SimulationSpec, Tolerance, WallSpec, S,
 };
-use super::spheres::SphereGroup;
-use super::structures::BuiltStructure;
-use super::{check_step_count, RunLength, Scene, MAX_THREADS};
-use crate::output::OutputSettings;
 use flexdem_contact::{FailureMode, LinkKinematicsMode, Material};
 use flexdem_elements::{Dofs, MaterialId, Model};
 use flexdem_geom::{Real, Vec3};
 use flexdem_integrate::{Load, Ramp, Settings, TimeStep};
-use std::path::{Path, PathBuf};
-
-/// The state of a build: the model so far and the names defined.
-pub(crate) struct Builder<'a> {
-    pub ctx: Ctx<'a>,
-    /// Folder of the scene file: relative paths start there.
-    pub dir: PathBuf,
-    pub model: Model,
-    pub materials: Vec<(String, MaterialId)>,
-    pub structures: Vec<BuiltStructure>,
-    pub groups: Vec<SphereGroup>,
-    /// The memory available to the simulation (bytes), if known.
-    pub available: Option<u64>,
-}
+use flexdem_output::OutputSettings;
+use std::path::Path;
 
 /// Builds the scene described by `file`.
 pub(crate) fn build(file: SceneFile, ctx: Ctx<'_>, source: &Path) -> Result<Scene, SceneError> {
@@ -39,7 +26,7 @@ pub(crate) fn build(file: SceneFile, ctx: Ctx<'_>, source: &Path) -> Result<Scen
         materials: Vec::new(),
         structures: Vec::new(),
         groups: Vec::new(),
-        available: super::memory::available_memory(),
+        available: crate::memory::available_memory(),
     };
     let (settings, run, threads) = b.simulation(&file.simulation)?;
     for (name, spec) in &file.materials {
@@ -48,7 +35,7 @@ pub(crate) fn build(file: SceneFile, ctx: Ctx<'_>, source: &Path) -> Result<Scen
     // the simulation's memory, estimated as each part is added (the model is a fraction of
     // it), refused at the part that does not fit
     let fits =
-        |b: &Builder<'_>, span: std::ops::Range<usize>, key: &str| match super::memory::too_large(
+        |b: &Builder<'_>, span: std::ops::Range<usize>, key: &str| match crate::memory::too_large(
             &b.model,
             b.available,
         ) {

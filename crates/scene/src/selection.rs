@@ -1,10 +1,10 @@
 //! `select = { ... }`: particles picked by structure (all nodes or a side), sphere group, ids,
 //! and filtered by a box or a plane. A selection that matches nothing is an error.
 
-use super::build::Builder;
-use super::error::{unknown_name, SceneError};
-use super::schema::{SelectSpec, S};
-use super::structures::Layout;
+use crate::builder::Builder;
+use crate::built::Layout;
+use crate::error::{unknown_name, SceneError};
+use crate::schema::{SelectSpec, S};
 use flexdem_elements::builders::{GridLayout, GridSide};
 
 /// The sides a layout offers.

@@ -1,10 +1,11 @@
 //! `[[spheres]]` → free spheres: one sphere, a lattice or a random packing in a box, with an
 //! initial velocity and spin.
 
-use super::build::Builder;
-use super::error::{unknown_name, SceneError};
-use super::packing::{lattice_packing, random_packing};
-use super::schema::{SpheresSpec, S};
+use crate::builder::Builder;
+use crate::built::SphereGroup;
+use crate::error::{unknown_name, SceneError};
+use crate::packing::{lattice_packing, random_packing};
+use crate::schema::{SpheresSpec, S};
 use flexdem_geom::{Real, Vec3};
 use std::ops::Range;
 
@@ -14,13 +15,6 @@ const KINDS: [(&str, &[&str]); 3] = [
     ("lattice", &["box", "radius", "spacing"]),
     ("random", &["box", "radius", "radius_range", "count", "seed"]),
 ];
-
-/// The spheres of one `[[spheres]]` entry, for selections by `spheres = "name"`.
-#[derive(Clone, Debug)]
-pub(crate) struct SphereGroup {
-    pub name: String,
-    pub particles: Range<u32>,
-}
 
 impl SpheresSpec {
     fn present(&self) -> Vec<(&'static str, Range<usize>)> {
@@ -99,7 +93,7 @@ impl Builder<'_> {
             ctx.positive(sp.radius.as_ref().ok_or_else(|| need("radius"))?, &key("radius"), "m")
         };
         let packing_error =
-            |e: super::packing::PackingError| ctx.at(table.clone(), "spheres", e.to_string());
+            |e: crate::packing::PackingError| ctx.at(table.clone(), "spheres", e.to_string());
         let spheres: Vec<(Vec3, Real)> = match kind {
             "single" => {
                 let c = ctx.vec3(

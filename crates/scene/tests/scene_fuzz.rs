@@ -1,6 +1,6 @@
 //! Random mutations of the example scenes: the loader returns Ok or Err, never panics.
 
-use flexdem_io::scene::parse_scene;
+use flexdem_scene::parse_scene;
 use proptest::prelude::*;
 use std::path::PathBuf;
 

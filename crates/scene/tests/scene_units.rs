@@ -2,8 +2,8 @@
 
 use flexdem_elements::{Dofs, ParticleKind};
 use flexdem_geom::Vec3;
-use flexdem_io::scene::packing::{lattice_packing, random_packing, PackingError};
-use flexdem_io::scene::parse_scene;
+use flexdem_scene::packing::{lattice_packing, random_packing, PackingError};
+use flexdem_scene::parse_scene;
 use std::path::Path;
 
 const HEAD: &str = r#"
@@ -17,7 +17,7 @@ density = 1000
 friction_angle_deg = 30
 "#;
 
-fn scene(body: &str) -> flexdem_io::scene::Scene {
+fn scene(body: &str) -> flexdem_scene::Scene {
     parse_scene(&format!("{HEAD}{body}"), Path::new("t.toml")).unwrap_or_else(|e| panic!("{e}"))
 }
 
@@ -244,7 +244,7 @@ fn a_mesh_structure_is_read_relative_to_the_scene_file() {
     );
     let path = dir.path().join("scene.toml");
     std::fs::write(&path, text).unwrap();
-    let s = flexdem_io::scene::load_scene(&path).unwrap_or_else(|e| panic!("{e}"));
+    let s = flexdem_scene::load_scene(&path).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(s.model.pfacets.len(), 12);
     assert_eq!(s.model.structures[0].nodes.len(), 8);
     assert_eq!(s.output.directory, dir.path().join("output"));
