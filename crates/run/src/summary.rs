@@ -1,9 +1,13 @@
-//! What a run reports at the end, as a plain struct: printed as text by
-//! [`crate::report`] and written as JSON by `--summary`.
+//! What a run reports at the end, as plain data ([`Summary`]): what the command line prints
+//! as text and writes as JSON (`--summary`), what a library user reads.
 
+use crate::error::RunError;
 use flexdem_elements::ParticleKind;
 use flexdem_integrate::{Energy, Simulation};
-use flexdem_io::output::{header_columns, row_values, OutputReport, OutputSettings};
+use flexdem_output::{
+    header_columns, row_values, series_columns, OutputReport, OutputSettings, CSV_FILE, PLOT_FILE,
+    PVD_FILE,
+};
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -217,7 +221,7 @@ pub fn tracked_values(
     let mut tracked = BTreeMap::new();
     let mut column = 2; // after time_s and step
     for spec in &settings.series {
-        let n = flexdem_io::output::series_columns(spec).len();
+        let n = series_columns(spec).len();
         let entry: BTreeMap<String, f64> = (column..column + n)
             .filter_map(|i| Some((columns.get(i)?.clone(), *values.get(i)?)))
             .collect();
@@ -236,9 +240,9 @@ impl OutputSummary {
         };
         OutputSummary {
             directory: settings.directory.clone(),
-            pvd: written(flexdem_io::output::PVD_FILE),
-            csv: written(flexdem_io::output::CSV_FILE),
-            plot: written(flexdem_io::output::PLOT_FILE),
+            pvd: written(PVD_FILE),
+            csv: written(CSV_FILE),
+            plot: written(PLOT_FILE),
             vtk_frames: report.vtk_frames,
             series_rows: report.series_rows,
             files_written: report.files.len(),
@@ -246,8 +250,13 @@ impl OutputSummary {
     }
 }
 
-/// Writes `summary` as pretty JSON to `path`.
-pub fn write_json(summary: &Summary, path: &Path) -> Result<(), String> {
+/// Writes `summary` as pretty JSON to `path` (creating its folder).
+pub fn write_json(summary: &Summary, path: &Path) -> Result<(), RunError> {
+    write_json_text(summary, path).map_err(RunError::Summary)
+}
+
+/// [`write_json`] with the error as a message.
+fn write_json_text(summary: &Summary, path: &Path) -> Result<(), String> {
     let text = serde_json::to_string_pretty(summary)
         .map_err(|e| format!("cannot encode the summary as JSON: {e}"))?;
     if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
