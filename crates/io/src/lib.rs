@@ -1,5 +1,11 @@
-//! Input and output for flexdem: scene files, mesh import, VTK output for ParaView, CSV series
-//! and checkpoints.
+//! The files of flexdem in one crate: checkpoints ([`checkpoint`], defined here), scene files
+//! ([`scene`], the `flexdem-scene` crate), mesh import ([`mesh`], `flexdem-mesh`) and the
+//! output of a run ([`output`], `flexdem-output`: VTK for ParaView, CSV series, PNG charts).
+//!
+//! Each of the re-exported crates can be used alone, with fewer dependencies: reading an STL
+//! file needs only `flexdem-mesh`; reading a scene compiles neither plotters nor bincode. The
+//! checkpoint format lives here because it stores types of both the scene (`RunLength`) and
+//! the output (`OutputSettings`, `OutputProgress`), and neither of them depends on it.
 
 pub mod checkpoint;
 

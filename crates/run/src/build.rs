@@ -24,8 +24,10 @@ pub struct SceneRest {
 /// file; they are all bad input.
 pub fn build_simulation(scene: Scene) -> Result<(Simulation, SceneRest), RunError> {
     let source = scene.source.clone();
-    let refused =
-        |source_error| RunError::Simulation { scene: source.clone(), source: source_error };
+    let refused = |source_error| RunError::Simulation {
+        scene: source.clone(),
+        source: Box::new(source_error),
+    };
     let mut sim = Simulation::new(scene.model, scene.settings).map_err(refused)?;
     for load in scene.loads {
         sim.add_load(load).map_err(refused)?;

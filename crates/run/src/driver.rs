@@ -139,7 +139,8 @@ impl Run {
     /// Reads the checkpoint at `path` and sets up the run that continues it
     /// ([`Run::from_checkpoint`]).
     pub fn resume(path: &Path, options: RunOptions) -> Result<Run, RunError> {
-        let checkpoint = read_checkpoint(path).map_err(RunError::ReadCheckpoint)?;
+        let checkpoint =
+            read_checkpoint(path).map_err(|e| RunError::ReadCheckpoint(Box::new(e)))?;
         Run::from_checkpoint(checkpoint, path, options)
     }
 
@@ -154,9 +155,10 @@ impl Run {
         options: RunOptions,
     ) -> Result<Run, RunError> {
         let threads = options.threads.or(checkpoint.threads);
-        let (sim, info) = checkpoint
-            .into_simulation()
-            .map_err(|source| RunError::Resume { path: path.to_owned(), source })?;
+        let (sim, info) = checkpoint.into_simulation().map_err(|source| RunError::Resume {
+            path: path.to_owned(),
+            source: Box::new(source),
+        })?;
         let target = match options.steps {
             Some(n) => RunLength::Steps(sim.steps().saturating_add(n)),
             None => info.run,
@@ -298,7 +300,7 @@ impl Run {
 
     /// One step with its output, periodic checkpoint and callbacks.
     fn step(&mut self, observer: &mut dyn RunObserver) -> Result<(), RunError> {
-        self.sim.step().map_err(RunError::Step)?;
+        self.sim.step().map_err(|e| RunError::Step(Box::new(e)))?;
         if let Some(out) = self.output.as_mut() {
             out.record(&self.sim).map_err(RunError::Output)?;
         }
@@ -341,7 +343,8 @@ impl Run {
             std::fs::create_dir_all(dir)
                 .map_err(|source| RunError::CheckpointFolder { path: dir.to_owned(), source })?;
         }
-        write_checkpoint(&self.checkpoint_path, &checkpoint).map_err(RunError::WriteCheckpoint)?;
+        write_checkpoint(&self.checkpoint_path, &checkpoint)
+            .map_err(|e| RunError::WriteCheckpoint(Box::new(e)))?;
         self.checkpoint_written = Some(self.checkpoint_path.clone());
         Ok(())
     }

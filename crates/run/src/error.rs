@@ -12,14 +12,14 @@ use std::path::PathBuf;
 pub enum RunError {
     /// The scene file cannot be read (its error names the file, line, column and key).
     #[error(transparent)]
-    Scene(#[from] SceneError),
+    Scene(Box<SceneError>),
     /// The engine refuses the scene's model, settings or loads.
     #[error("{}: the scene cannot be simulated: {source}", scene.display())]
     Simulation {
         /// The scene file.
         scene: PathBuf,
         /// The engine's error.
-        source: SimulationError,
+        source: Box<SimulationError>,
     },
     /// The scene's duration is too many steps at the time step the engine chose.
     #[error("{}: `simulation.duration`: {message}", scene.display())]
@@ -31,14 +31,14 @@ pub enum RunError {
     },
     /// The checkpoint file cannot be read.
     #[error(transparent)]
-    ReadCheckpoint(CheckpointError),
+    ReadCheckpoint(Box<CheckpointError>),
     /// The checkpoint was read but its state cannot be resumed.
     #[error("{}: the checkpoint cannot be resumed: {source}", path.display())]
     Resume {
         /// The checkpoint file.
         path: PathBuf,
         /// Why.
-        source: CheckpointError,
+        source: Box<CheckpointError>,
     },
     /// The output cannot be set up (a bad setting or series, a folder that cannot be made).
     #[error(transparent)]
@@ -61,7 +61,7 @@ pub enum RunError {
     },
     /// A step failed (an unstable run, energy created beyond the tolerance, ...).
     #[error(transparent)]
-    Step(SimulationError),
+    Step(Box<SimulationError>),
     /// Writing the output failed during the run.
     #[error(transparent)]
     Output(OutputError),
@@ -75,10 +75,16 @@ pub enum RunError {
     },
     /// A checkpoint cannot be written.
     #[error(transparent)]
-    WriteCheckpoint(CheckpointError),
+    WriteCheckpoint(Box<CheckpointError>),
     /// The JSON summary cannot be written.
     #[error("{0}")]
     Summary(String),
+}
+
+impl From<SceneError> for RunError {
+    fn from(e: SceneError) -> RunError {
+        RunError::Scene(Box::new(e))
+    }
 }
 
 impl RunError {

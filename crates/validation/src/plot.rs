@@ -1,7 +1,7 @@
 //! The report's figures: one [`LineChart`] per PNG, drawn by `flexdem-output`'s chart layer
 //! (plotters, with the embedded DejaVu Sans font), as the series plots of a run are.
 
-use crate::ValidationError;
+use crate::error::ValidationError;
 pub use flexdem_output::chart::{Curve, CurveStyle};
 use flexdem_output::chart::{Figure, LineChart};
 use std::path::Path;
