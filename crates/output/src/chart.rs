@@ -18,6 +18,7 @@
 //! ```
 
 use plotters::coord::Shift;
+use plotters::element::DashedPathElement;
 use plotters::prelude::*;
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
@@ -356,7 +357,7 @@ fn draw_chart<DB: DrawingBackend>(
                     }
                     CurveStyle::Dashed => {
                         anno.legend(move |(lx, ly)| {
-                            PathElement::new(vec![(lx, ly), (lx + 8, ly)], style)
+                            DashedPathElement::new(vec![(lx, ly), (lx + 22, ly)], 6, 4, style)
                         });
                     }
                     CurveStyle::Points => {
