@@ -37,7 +37,7 @@ pub enum OutputError {
         /// What is wrong.
         problem: String,
     },
-    /// The output of an earlier run cannot be continued (see [`Output::resume`]).
+    /// The output of an earlier run cannot be continued (see [`crate::Output::resume`]).
     #[error("cannot continue the output in {path}: {problem}")]
     Resume {
         /// The file that does not match the checkpoint.

@@ -175,7 +175,7 @@ fn feature_kind(site: &Site) -> i32 {
     }
 }
 
-/// Contacts as lines from the centre of site 1 to the centre of site 2 (see [`site_centre`]);
+/// Contacts as lines from the centre of site 1 to the centre of site 2 (see `site_centre`);
 /// cell data `normal_force` (compression positive), `force` (total force on body 2),
 /// `shear_force`, `point` (contact point), `kind1`, `kind2` (0 particle, 1 edge, 2 face,
 /// 3 wall).
