@@ -9,3 +9,7 @@ pub use flexdem_elements as elements;
 pub use flexdem_geom as geom;
 pub use flexdem_integrate as integrate;
 pub use flexdem_io as io;
+pub use flexdem_mesh as mesh;
+pub use flexdem_output as output;
+pub use flexdem_run as run;
+pub use flexdem_scene as scene;

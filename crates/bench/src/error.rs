@@ -2,7 +2,7 @@
 
 use flexdem_elements::{BuildError, ModelError};
 use flexdem_integrate::SimulationError;
-use flexdem_io::scene::SceneError;
+use flexdem_scene::SceneError;
 
 /// A benchmark that could not be built or run; the message names the scene and size.
 #[derive(Debug, thiserror::Error)]

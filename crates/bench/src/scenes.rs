@@ -174,10 +174,8 @@ impl SceneKind {
 /// radius 0.1 m, E = 100 MPa, at 2 m/s; no gravity, no damping), with the automatic time
 /// step replaced by [`TUBE_IMPACT_DT`] so that YADE can run the same steps.
 pub fn tube_impact() -> Result<(Model, Settings), BenchError> {
-    let scene = flexdem_io::scene::parse_scene(
-        TUBE_IMPACT_TOML,
-        Path::new("examples/tube_impact_heavy.toml"),
-    )?;
+    let scene =
+        flexdem_scene::parse_scene(TUBE_IMPACT_TOML, Path::new("examples/tube_impact_heavy.toml"))?;
     let mut settings = scene.settings;
     settings.time_step = TimeStep::Fixed(TUBE_IMPACT_DT);
     Ok((scene.model, settings))
@@ -322,7 +320,7 @@ fn add_material(
     model.add_material(m)
 }
 
-/// SplitMix64 (as in `flexdem_io::scene::packing`): a small reproducible generator.
+/// SplitMix64 (as in `flexdem_scene::packing`): a small reproducible generator.
 struct SplitMix64(u64);
 
 impl SplitMix64 {

@@ -32,6 +32,17 @@ impl CliError {
     }
 }
 
+impl From<flexdem_run::RunError> for CliError {
+    /// Bad input (exit code 2) or a failed run (exit code 1), as the error says.
+    fn from(e: flexdem_run::RunError) -> CliError {
+        if e.is_bad_input() {
+            CliError::Input(e.to_string())
+        } else {
+            CliError::Run(e.to_string())
+        }
+    }
+}
+
 impl fmt::Display for CliError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {

@@ -10,7 +10,6 @@ mod commands;
 mod error;
 mod progress;
 mod report;
-mod summary;
 
 use clap::Parser;
 use cli::{Cli, Command};

@@ -1,6 +1,6 @@
 //! The text report printed at the end of a run, and number formatting for humans.
 
-use crate::summary::{Status, Summary};
+use flexdem_run::{Status, Summary};
 use std::fmt::Write;
 
 /// A duration in seconds for humans: `850 ms`, `12.3 s`, `4 min 05 s`, `2 h 03 min`.

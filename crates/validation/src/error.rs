@@ -20,7 +20,7 @@ pub enum ValidationError {
     Material(#[from] flexdem_contact::MaterialError),
     /// A scene file could not be read.
     #[error("scene: {0}")]
-    Scene(#[from] flexdem_io::scene::SceneError),
+    Scene(#[from] flexdem_scene::SceneError),
     /// A file could not be read or written.
     #[error("{path}: {source}")]
     Io {

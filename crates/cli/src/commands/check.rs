@@ -1,12 +1,12 @@
 //! `flexdem check SCENE`: reads the scene and builds its simulation without running it.
 
-use super::{build_simulation, describe_run, read_scene};
+use super::common::{build_simulation, describe_run, read_scene};
 use crate::cli::SceneArgs;
 use crate::error::{CliError, Outcome};
 use crate::report::plural;
-use crate::summary::Counts;
 use flexdem_integrate::TimeStep;
 use flexdem_io::output::validate_series;
+use flexdem_run::Counts;
 
 /// Checks the scene of `args`: prints `ok` with the counts and the time step, or fails with
 /// the scene's error (exit code 2).

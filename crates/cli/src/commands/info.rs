@@ -1,15 +1,15 @@
 //! `flexdem info SCENE`: what a scene holds (counts, masses, materials) and how it will run
 //! (time step, run length, output).
 
-use super::{build_simulation, describe_run, read_scene};
+use super::common::{build_simulation, describe_run, read_scene};
 use crate::cli::SceneArgs;
 use crate::error::{CliError, Outcome};
 use crate::report::plural;
-use crate::summary::Counts;
 use flexdem_contact::Material;
 use flexdem_elements::ParticleKind;
 use flexdem_integrate::{Simulation, TimeStep};
 use flexdem_io::scene::RunLength;
+use flexdem_run::Counts;
 use std::path::Path;
 
 /// Names of the materials of the scene file at `path`, in the order of the model's material

@@ -1,60 +1,36 @@
 //! `flexdem run SCENE`: runs a scene file with the command line's overrides.
 
-use super::execute::{default_checkpoint_path, execute, writes_something, Job};
-use super::{absolute, build_simulation, read_scene, set_threads, to_usize};
+use super::common::{describe_run, read_scene, set_threads, to_usize};
+use super::execute::{execute, interrupt_flag};
 use crate::cli::RunArgs;
 use crate::error::{CliError, Outcome};
-use flexdem_io::output::Output;
-use flexdem_io::scene::RunLength;
+use flexdem_run::{Run, RunOptions};
 
 /// Runs the scene of `args`.
 pub fn run(args: &RunArgs) -> Result<Outcome, CliError> {
     let scene = read_scene(&args.scene)?;
+    // the thread pool first: building the simulation may already use it
     let threads = to_usize(args.exec.threads)?.or(scene.threads);
     let in_use = set_threads(threads)?;
-    let (sim, mut rest) = build_simulation(scene)?;
-    if let Some(dir) = &args.output {
-        rest.output.directory = dir.clone();
-    }
-    rest.output.directory = absolute(&rest.output.directory);
-    if args.exec.no_output {
-        rest.output.vtk_every = None;
-        rest.output.series_every = None;
-        rest.output.plot = false;
-    }
-    let target = match args.steps {
-        Some(n) => RunLength::Steps(n),
-        None => rest.run,
+    let options = RunOptions {
+        steps: args.steps,
+        threads,
+        output_directory: args.output.clone(),
+        no_output: args.exec.no_output,
+        checkpoint_path: args.exec.checkpoint.clone(),
+        checkpoint_every: args.exec.checkpoint_every,
+        interrupt: Some(interrupt_flag()?),
     };
-    let output = if writes_something(&rest.output) {
-        Some(Output::new(&rest.output, &sim).map_err(|e| CliError::Input(e.to_string()))?)
-    } else {
-        None
-    };
-    let checkpoint_path = match &args.exec.checkpoint {
-        Some(path) => absolute(path),
-        None => default_checkpoint_path(&rest.output.directory),
-    };
+    let run = Run::new(scene, options)?;
     if !args.exec.quiet {
         eprintln!(
             "running {} for {} (dt = {:.3e} s, critical {:.3e} s) on {in_use} thread{}",
-            rest.source.display(),
-            super::describe_run(target),
-            sim.dt(),
-            sim.critical_dt(),
+            args.scene.display(),
+            describe_run(run.target()),
+            run.sim().dt(),
+            run.sim().critical_dt(),
             if in_use == 1 { "" } else { "s" }
         );
     }
-    execute(Job {
-        sim,
-        output,
-        output_settings: rest.output,
-        target,
-        threads: (threads, in_use),
-        scene: absolute(&rest.source),
-        checkpoint_path,
-        checkpoint_every: args.exec.checkpoint_every,
-        summary: args.exec.summary.clone(),
-        quiet: args.exec.quiet,
-    })
+    execute(run, &args.exec)
 }

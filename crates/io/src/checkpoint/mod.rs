@@ -46,9 +46,11 @@
 mod atomic;
 mod check;
 
-use crate::output::OutputSettings;
-use crate::scene::RunLength;
 use flexdem_integrate::{Simulation, SimulationError, Snapshot};
+/// What the output had written, stored in checkpoints (defined by `flexdem-output`).
+pub use flexdem_output::OutputProgress;
+use flexdem_output::OutputSettings;
+use flexdem_scene::RunLength;
 use serde::{Deserialize, Serialize};
 use std::fs::File;
 use std::io::{self, Read};
@@ -78,16 +80,6 @@ pub struct Checkpoint {
     pub scene: PathBuf,
     /// What the output had written when the checkpoint was taken.
     pub output_progress: OutputProgress,
-}
-
-/// What the output of a run has written so far, so that a resumed run continues the same
-/// VTK series and CSV file.
-#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
-pub struct OutputProgress {
-    /// The VTK frames written: (step, simulated time in s) of each, in order.
-    pub vtk_frames: Vec<(u64, f64)>,
-    /// Number of data rows written to the CSV series (header not counted).
-    pub series_rows: u64,
 }
 
 /// The parts of a [`Checkpoint`] other than the simulation, returned by

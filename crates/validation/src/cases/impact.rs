@@ -16,7 +16,7 @@ use crate::report::{CaseReport, Check, Context, Figure};
 use crate::ValidationError;
 use flexdem_geom::{Real, Vec3};
 use flexdem_integrate::{Energy, Simulation};
-use flexdem_io::scene::{load_scene, RunLength};
+use flexdem_scene::{load_scene, RunLength};
 use std::path::{Path, PathBuf};
 
 /// Tube radius (paper §7), m.

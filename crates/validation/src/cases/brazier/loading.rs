@@ -455,7 +455,7 @@ pub fn bend(
     if let Some(dir) = out_dir {
         let file = "brazier_final.vtp".to_string();
         let path = dir.join(&file);
-        let xml = flexdem_io::output::pfacets_polydata(&run.sim).to_xml();
+        let xml = flexdem_output::pfacets_polydata(&run.sim).to_xml();
         std::fs::write(&path, xml).map_err(|source| ValidationError::Io { path, source })?;
         result.vtk_file = Some(file);
     }

@@ -1,0 +1,199 @@
+//! What a run records: the output settings, the quantities of the CSV series, their column
+//! names (with units) and their values taken from a simulation.
+
+use crate::error::OutputError;
+use flexdem_geom::{Real, Vec3};
+use flexdem_integrate::Simulation;
+use serde::{Deserialize, Serialize};
+use std::path::PathBuf;
+
+/// A quantity recorded each output step into the CSV series.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub enum Quantity {
+    /// Position of a particle (m): 3 columns `x, y, z`.
+    Position(u32),
+    /// Velocity of a particle (m/s): 3 columns `vx, vy, vz`.
+    Velocity(u32),
+    /// Angular velocity of a particle (rad/s): 3 columns `wx, wy, wz`.
+    AngularVelocity(u32),
+    /// Every energy term of [`flexdem_integrate::Energy`] and its balance (J): one column each.
+    Energy,
+    /// Sum of the total forces (links, contacts, loads) on a selection of particles at the
+    /// last step (N): 3 columns `fx, fy, fz`.
+    ForceOnParticles(Vec<u32>),
+    /// Number of contacts: 1 column.
+    ContactCount,
+    /// Number of broken links: 1 column.
+    BrokenLinks,
+}
+
+/// One named quantity of the CSV series; the name prefixes its columns.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SeriesSpec {
+    /// Name of the series: letters, digits, `_`, `-` and `.` only (it goes into CSV column
+    /// names and the plot's panel titles).
+    pub name: String,
+    /// What is recorded.
+    pub quantity: Quantity,
+}
+
+/// What a run writes and how often.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct OutputSettings {
+    /// Folder of all output files (created if missing).
+    pub directory: PathBuf,
+    /// Steps between VTK frames (None: no VTK).
+    pub vtk_every: Option<u64>,
+    /// Steps between CSV rows (None: no CSV).
+    pub series_every: Option<u64>,
+    /// The quantities of the CSV series.
+    pub series: Vec<SeriesSpec>,
+    /// PNG plot of the series at the end of the run.
+    pub plot: bool,
+}
+
+/// Names of the energy columns, in the order of [`energy_values`].
+const ENERGY_TERMS: [&str; 10] = [
+    "kinetic_translation",
+    "kinetic_rotation",
+    "elastic_links",
+    "elastic_contacts",
+    "gravity_work",
+    "load_work",
+    "damping",
+    "links_dissipated",
+    "friction",
+    "balance",
+];
+
+/// The energy terms of a simulation in the order of [`ENERGY_TERMS`] (J).
+fn energy_values(sim: &Simulation) -> [Real; 10] {
+    let e = sim.energy();
+    [
+        e.kinetic_translation,
+        e.kinetic_rotation,
+        e.elastic_links,
+        e.elastic_contacts,
+        e.gravity_work,
+        e.load_work,
+        e.damping,
+        e.links_dissipated,
+        e.friction,
+        e.balance(),
+    ]
+}
+
+/// Column names of one series, each `NAME_COMPONENT_UNIT`: `tip_x_m`, `tip_vx_m_per_s`,
+/// `tip_wx_rad_per_s`, `e_kinetic_translation_J`, `load_fx_N`, `n_count`.
+pub fn series_columns(spec: &SeriesSpec) -> Vec<String> {
+    let name = &spec.name;
+    let triple = |prefix: &str, unit: &str| -> Vec<String> {
+        ["x", "y", "z"].iter().map(|c| format!("{name}_{prefix}{c}_{unit}")).collect()
+    };
+    match &spec.quantity {
+        Quantity::Position(_) => triple("", "m"),
+        Quantity::Velocity(_) => triple("v", "m_per_s"),
+        Quantity::AngularVelocity(_) => triple("w", "rad_per_s"),
+        Quantity::Energy => ENERGY_TERMS.iter().map(|t| format!("{name}_{t}_J")).collect(),
+        Quantity::ForceOnParticles(_) => triple("f", "N"),
+        Quantity::ContactCount | Quantity::BrokenLinks => vec![format!("{name}_count")],
+    }
+}
+
+/// The whole CSV header: `time_s`, `step`, then the columns of every series in order.
+pub fn header_columns(series: &[SeriesSpec]) -> Vec<String> {
+    let mut columns = vec!["time_s".to_string(), "step".to_string()];
+    columns.extend(series.iter().flat_map(series_columns));
+    columns
+}
+
+/// Checks a series list against a simulation: names valid and distinct, particle ids in range,
+/// selections not empty.
+pub fn validate_series(series: &[SeriesSpec], sim: &Simulation) -> Result<(), OutputError> {
+    let count = sim.model.particles.pos.len();
+    for (i, spec) in series.iter().enumerate() {
+        let name_ok = !spec.name.is_empty()
+            && spec.name.chars().all(|c| c.is_ascii_alphanumeric() || "_-.".contains(c));
+        if !name_ok {
+            return Err(OutputError::Series {
+                series: spec.name.clone(),
+                problem: "the name must be non-empty and use only ASCII letters, digits, \
+                          '_', '-' and '.'"
+                    .into(),
+            });
+        }
+        if series[..i].iter().any(|other| other.name == spec.name) {
+            return Err(OutputError::Series {
+                series: spec.name.clone(),
+                problem: "two series have this name".into(),
+            });
+        }
+        let ids: &[u32] = match &spec.quantity {
+            Quantity::Position(id) | Quantity::Velocity(id) | Quantity::AngularVelocity(id) => {
+                std::slice::from_ref(id)
+            }
+            Quantity::ForceOnParticles(ids) => ids,
+            _ => &[],
+        };
+        if matches!(spec.quantity, Quantity::ForceOnParticles(_)) && ids.is_empty() {
+            return Err(OutputError::Series {
+                series: spec.name.clone(),
+                problem: "the particle selection is empty".into(),
+            });
+        }
+        if let Some(bad) = ids.iter().find(|&&id| id as usize >= count) {
+            return Err(OutputError::Series {
+                series: spec.name.clone(),
+                problem: format!("particle {bad} does not exist (the model has {count})"),
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Pushes the three components of `v` onto `row`.
+fn push_vec3(row: &mut Vec<Real>, v: Vec3) {
+    row.extend_from_slice(&[v.x, v.y, v.z]);
+}
+
+/// Value of particle `id`'s entry in `values`, zero if it is missing (checked beforehand by
+/// [`validate_series`]).
+fn particle_value(values: &[Vec3], id: u32) -> Vec3 {
+    values.get(id as usize).copied().unwrap_or_else(Vec3::zeros)
+}
+
+/// The values of one series at the simulation's current state, in the order of
+/// [`series_columns`].
+pub fn series_values(spec: &SeriesSpec, sim: &Simulation, row: &mut Vec<Real>) {
+    let p = &sim.model.particles;
+    match &spec.quantity {
+        Quantity::Position(id) => push_vec3(row, particle_value(&p.pos, *id)),
+        Quantity::Velocity(id) => push_vec3(row, particle_value(&p.vel, *id)),
+        Quantity::AngularVelocity(id) => push_vec3(row, particle_value(&p.ang_vel, *id)),
+        Quantity::Energy => row.extend_from_slice(&energy_values(sim)),
+        Quantity::ForceOnParticles(ids) => {
+            let forces = sim.forces();
+            let total = ids.iter().fold(Vec3::zeros(), |sum, &i| sum + particle_value(forces, i));
+            push_vec3(row, total);
+        }
+        Quantity::ContactCount => row.push(sim.contacts.list.len() as Real),
+        Quantity::BrokenLinks => {
+            let broken = sim
+                .links
+                .state
+                .iter()
+                .filter(|s| s.status == flexdem_contact::LinkStatus::Broken)
+                .count();
+            row.push(broken as Real);
+        }
+    }
+}
+
+/// One CSV row: time, step, then every series' values.
+pub fn row_values(series: &[SeriesSpec], sim: &Simulation) -> Vec<Real> {
+    let mut row = vec![sim.time(), sim.steps() as Real];
+    for spec in series {
+        series_values(spec, sim, &mut row);
+    }
+    row
+}

@@ -1,0 +1,144 @@
+//! The run driver as a library: stepping in pieces with callbacks, the interrupt flag and its
+//! checkpoint, and a run resumed from it ending bit-identically to an uninterrupted one.
+
+use flexdem_integrate::Simulation;
+use flexdem_run::{
+    NoObserver, Run, RunError, RunLength, RunObserver, RunOptions, Status, Stop, CHECKPOINT_FILE,
+};
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+
+/// An example scene of the workspace.
+fn example(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples").join(name)
+}
+
+/// Counts what a run reports.
+#[derive(Default)]
+struct Counter {
+    started: usize,
+    steps: u64,
+    checkpoints: usize,
+    finished: usize,
+    /// Sets this flag once this many steps are done.
+    interrupt_after: Option<(u64, Arc<AtomicBool>)>,
+}
+
+impl RunObserver for Counter {
+    fn started(&mut self, _sim: &Simulation, _target: RunLength) {
+        self.started += 1;
+    }
+    fn stepped(&mut self, _sim: &Simulation) {
+        self.steps += 1;
+        if let Some((n, flag)) = &self.interrupt_after {
+            if self.steps >= *n {
+                flag.store(true, Ordering::SeqCst);
+            }
+        }
+    }
+    fn checkpoint_written(&mut self, _path: &Path) {
+        self.checkpoints += 1;
+    }
+    fn finished(&mut self, _sim: &Simulation) {
+        self.finished += 1;
+    }
+}
+
+/// The state a run ends in, bit for bit: positions, velocities and energy terms.
+fn final_state(run: &Run) -> Vec<u64> {
+    let sim = run.sim();
+    let p = &sim.model.particles;
+    let e = sim.energy();
+    p.pos
+        .iter()
+        .chain(&p.vel)
+        .chain(&p.ang_vel)
+        .flat_map(|v| [v.x, v.y, v.z])
+        .chain([sim.time(), e.kinetic_translation, e.elastic_links, e.elastic_contacts, e.friction])
+        .map(f64::to_bits)
+        .collect()
+}
+
+#[test]
+fn advance_steps_in_pieces_with_callbacks_then_finishes_with_a_summary() {
+    let dir = tempfile::tempdir().unwrap();
+    let options = RunOptions {
+        steps: Some(30),
+        output_directory: Some(dir.path().into()),
+        checkpoint_every: Some(10),
+        ..RunOptions::default()
+    };
+    let mut run = Run::from_scene(&example("net_drop.toml"), options).unwrap();
+    assert_eq!(run.target(), RunLength::Steps(30));
+    let mut counter = Counter::default();
+    assert_eq!(run.advance(Some(12), &mut counter).unwrap(), Stop::StepLimit);
+    assert_eq!(run.sim().steps(), 12);
+    assert_eq!(run.advance(None, &mut counter).unwrap(), Stop::Reached);
+    assert!(run.is_done());
+    assert_eq!(run.advance(None, &mut counter).unwrap(), Stop::Reached, "nothing more to do");
+    let summary = run.finish(&mut counter).unwrap();
+    assert_eq!(
+        (counter.started, counter.steps, counter.checkpoints, counter.finished),
+        (1, 30, 3, 1)
+    );
+    assert_eq!(summary.status, Status::Completed);
+    assert_eq!((summary.steps, summary.steps_this_run), (30, 30));
+    assert_eq!(summary.checkpoint.as_deref(), Some(dir.path().join(CHECKPOINT_FILE).as_path()));
+    let output = summary.output.expect("the scene writes output");
+    assert_eq!(output.directory, dir.path());
+    assert!(output.csv.is_some_and(|csv| csv.is_file()));
+}
+
+#[test]
+fn an_interrupted_run_resumes_to_the_same_end_as_an_uninterrupted_one() {
+    let dir = tempfile::tempdir().unwrap();
+    let (whole_dir, parts_dir) = (dir.path().join("whole"), dir.path().join("parts"));
+    let options = |out: &Path| RunOptions {
+        steps: Some(40),
+        output_directory: Some(out.into()),
+        ..RunOptions::default()
+    };
+    let scene = example("tube_impact_solid.toml");
+    let mut whole = Run::from_scene(&scene, options(&whole_dir)).unwrap();
+    let summary = whole.execute(&mut NoObserver).unwrap();
+    assert_eq!(summary.status, Status::Completed);
+
+    let flag = Arc::new(AtomicBool::new(false));
+    let mut parts = Run::from_scene(
+        &scene,
+        RunOptions { interrupt: Some(Arc::clone(&flag)), ..options(&parts_dir) },
+    )
+    .unwrap();
+    let mut counter = Counter { interrupt_after: Some((15, flag)), ..Counter::default() };
+    let summary = parts.execute(&mut counter).unwrap();
+    assert_eq!(summary.status, Status::Interrupted);
+    assert_eq!(summary.steps, 15);
+    let checkpoint = parts_dir.join(CHECKPOINT_FILE);
+    assert_eq!(summary.checkpoint.as_deref(), Some(checkpoint.as_path()));
+
+    let mut resumed = Run::resume(&checkpoint, RunOptions::default()).unwrap();
+    assert_eq!(resumed.target(), RunLength::Steps(40));
+    assert_eq!(resumed.scene_file(), std::path::absolute(&scene).unwrap());
+    let summary = resumed.execute(&mut NoObserver).unwrap();
+    assert_eq!((summary.status, summary.steps_this_run), (Status::Completed, 25));
+    assert_eq!(final_state(&resumed), final_state(&whole));
+    for file in ["series.csv", "flexdem.pvd", "particles_000040.vtp", "contacts_000040.vtp"] {
+        let a = std::fs::read(whole_dir.join(file)).unwrap();
+        let b = std::fs::read(parts_dir.join(file)).unwrap();
+        assert!(a == b, "{file} differs between the uninterrupted and the resumed run");
+    }
+}
+
+#[test]
+fn setup_errors_say_whether_the_input_is_at_fault() {
+    let err = Run::from_scene(Path::new("no/such/scene.toml"), RunOptions::default())
+        .err()
+        .expect("a missing scene is an error");
+    assert!(err.is_bad_input(), "{err}");
+    let dir = tempfile::tempdir().unwrap();
+    let not_a_checkpoint = dir.path().join("x.flexdem");
+    std::fs::write(&not_a_checkpoint, b"hello").unwrap();
+    let err = Run::resume(&not_a_checkpoint, RunOptions::default()).err().unwrap();
+    assert!(matches!(err, RunError::ReadCheckpoint(_)) && err.is_bad_input(), "{err}");
+}

@@ -1,0 +1,20 @@
+//! The state of a scene build, which the sections' readers (`build`, `structures`,
+//! `spheres`, `selection`, `output`) extend with their methods.
+
+use crate::built::{BuiltStructure, SphereGroup};
+use crate::error::Ctx;
+use flexdem_elements::{MaterialId, Model};
+use std::path::PathBuf;
+
+/// The state of a build: the model so far and the names defined.
+pub(crate) struct Builder<'a> {
+    pub ctx: Ctx<'a>,
+    /// Folder of the scene file: relative paths start there.
+    pub dir: PathBuf,
+    pub model: Model,
+    pub materials: Vec<(String, MaterialId)>,
+    pub structures: Vec<BuiltStructure>,
+    pub groups: Vec<SphereGroup>,
+    /// The memory available to the simulation (bytes), if known.
+    pub available: Option<u64>,
+}

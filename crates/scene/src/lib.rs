@@ -1,0 +1,30 @@
+//! Scene files: a TOML description of a simulation (settings, materials, structures from the
+//! builders or from mesh files, free spheres, walls, boundary conditions, loads and outputs),
+//! read into a [`Scene`] ready for [`flexdem_integrate::Simulation::new`]. The keys, their
+//! units and defaults are in `docs/scene-reference.md`.
+//!
+//! Every error names the file, the line and column, the key and what is expected; unknown
+//! keys are errors, with the nearest known key suggested. Relative paths (meshes, the output
+//! folder) are relative to the folder of the scene file.
+
+mod build;
+mod builder;
+mod built;
+mod check;
+mod error;
+pub mod memory;
+mod output;
+pub mod packing;
+pub mod placement;
+mod read;
+mod run_length;
+mod scene;
+mod schema;
+mod selection;
+mod spheres;
+mod structures;
+
+pub use error::SceneError;
+pub use read::{load_scene, parse_scene};
+pub use run_length::{check_step_count, RunLength, MAX_STEPS};
+pub use scene::{Scene, MAX_THREADS};

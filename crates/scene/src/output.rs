@@ -1,0 +1,115 @@
+//! `[output]` → [`OutputSettings`]: folder, frequencies and the CSV series.
+
+use crate::builder::Builder;
+use crate::error::{unknown_name, SceneError};
+use crate::schema::{OutputSpec, S};
+use flexdem_output::{OutputSettings, Quantity, SeriesSpec};
+
+/// The series quantities a scene may ask for.
+const QUANTITIES: [&str; 7] =
+    ["position", "velocity", "angular_velocity", "force", "energy", "contacts", "broken_links"];
+
+impl Builder<'_> {
+    /// Reads the `[output]` table.
+    pub(crate) fn output(&self, spec: &S<OutputSpec>) -> Result<OutputSettings, SceneError> {
+        let ctx = self.ctx;
+        let o = spec.get_ref();
+        let directory = match &o.directory {
+            Some(d) if d.get_ref().trim().is_empty() => {
+                return Err(ctx.at(
+                    d.span(),
+                    "output.directory",
+                    "is empty: expected a folder name",
+                ))
+            }
+            Some(d) => self.dir.join(d.get_ref()),
+            None => self.dir.join("output"),
+        };
+        let every = |v: &Option<S<i64>>, k: &str| -> Result<Option<u64>, SceneError> {
+            v.as_ref()
+                .map(|n| ctx.count(n, &format!("output.{k}"), 1).map(|n| n as u64))
+                .transpose()
+        };
+        let vtk_every = every(&o.vtk_every, "vtk_every")?;
+        let series_every = every(&o.series_every, "series_every")?;
+        let mut series: Vec<SeriesSpec> = Vec::with_capacity(o.series.len());
+        for s in &o.series {
+            let sp = s.get_ref();
+            let name = sp.name.get_ref();
+            let ok = !name.is_empty()
+                && name.chars().all(|c| c.is_ascii_alphanumeric() || "_-.".contains(c));
+            if !ok {
+                return Err(ctx.at(sp.name.span(), "output.series.name", format!("`{name}` is not a valid series name: use ASCII letters, digits, '_', '-' and '.' only")));
+            }
+            if series.iter().any(|other| other.name == *name) {
+                return Err(ctx.at(
+                    sp.name.span(),
+                    "output.series.name",
+                    format!("two series are named `{name}`: names must be unique"),
+                ));
+            }
+            let q = sp.quantity.get_ref().as_str();
+            if !QUANTITIES.contains(&q) {
+                return Err(ctx.at(
+                    sp.quantity.span(),
+                    "output.series.quantity",
+                    unknown_name("quantity", q, &QUANTITIES),
+                ));
+            }
+            let needs_selection =
+                matches!(q, "position" | "velocity" | "angular_velocity" | "force");
+            let ids = match (&sp.of, needs_selection) {
+                (Some(of), true) => self.select(of, "output.series.of")?,
+                (None, true) => {
+                    return Err(ctx.missing(
+                        s.span(),
+                        "output.series.of",
+                        &format!("quantity = \"{q}\" needs `of = {{ ... }}`, a selection"),
+                    ))
+                }
+                (Some(of), false) => {
+                    return Err(ctx.at(
+                        of.span(),
+                        "output.series.of",
+                        format!("quantity = \"{q}\" is global: remove `of`"),
+                    ))
+                }
+                (None, false) => Vec::new(),
+            };
+            let one = || -> Result<u32, SceneError> {
+                match ids.as_slice() {
+                    [id] => Ok(*id),
+                    _ => Err(ctx.at(
+                        sp.of.as_ref().map_or(s.span(), |o| o.span()),
+                        "output.series.of",
+                        format!("quantity = \"{q}\" needs exactly one particle; this selection has {}: narrow it (e.g. `ids = [..]` or `side = \"end\"`)", ids.len()),
+                    )),
+                }
+            };
+            let quantity = match q {
+                "position" => Quantity::Position(one()?),
+                "velocity" => Quantity::Velocity(one()?),
+                "angular_velocity" => Quantity::AngularVelocity(one()?),
+                "force" => Quantity::ForceOnParticles(ids.clone()),
+                "energy" => Quantity::Energy,
+                "contacts" => Quantity::ContactCount,
+                _ => Quantity::BrokenLinks,
+            };
+            series.push(SeriesSpec { name: name.clone(), quantity });
+        }
+        if !series.is_empty() && series_every.is_none() {
+            return Err(ctx.missing(
+                spec.span(),
+                "output.series_every",
+                "series are defined: give `series_every = N` (steps between CSV rows)",
+            ));
+        }
+        Ok(OutputSettings {
+            directory,
+            vtk_every,
+            series_every,
+            series,
+            plot: o.plot.unwrap_or(false),
+        })
+    }
+}

@@ -1,0 +1,30 @@
+//! [`Scene`]: what a scene file describes, ready for a simulation.
+
+use crate::run_length::RunLength;
+use flexdem_elements::Model;
+use flexdem_integrate::{Load, Settings};
+use flexdem_output::OutputSettings;
+use std::path::PathBuf;
+
+/// Largest number of worker threads a scene (`simulation.threads`) or the command line
+/// (`--threads`) may ask for.
+pub const MAX_THREADS: usize = 4096;
+
+/// A scene read from a file: everything needed to create and run a simulation.
+#[derive(Clone, Debug)]
+pub struct Scene {
+    /// Materials, particles, structures, walls, with blocked DOFs and imposed velocities.
+    pub model: Model,
+    /// Time step, gravity, damping, link kinematics.
+    pub settings: Settings,
+    /// Imposed forces and moments, to add with `Simulation::add_load`.
+    pub loads: Vec<Load>,
+    /// How long to run.
+    pub run: RunLength,
+    /// Number of worker threads (None: the machine's default).
+    pub threads: Option<usize>,
+    /// What to write.
+    pub output: OutputSettings,
+    /// The scene file.
+    pub source: PathBuf,
+}

@@ -1,0 +1,251 @@
+//! Placement, packings and selections of scene files.
+
+use flexdem_elements::{Dofs, ParticleKind};
+use flexdem_geom::Vec3;
+use flexdem_scene::packing::{lattice_packing, random_packing, PackingError};
+use flexdem_scene::parse_scene;
+use std::path::Path;
+
+const HEAD: &str = r#"
+[simulation]
+steps = 1
+
+[materials.m]
+young = 1e7
+poisson = 0.3
+density = 1000
+friction_angle_deg = 30
+"#;
+
+fn scene(body: &str) -> flexdem_scene::Scene {
+    parse_scene(&format!("{HEAD}{body}"), Path::new("t.toml")).unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn close(a: Vec3, b: Vec3) -> bool {
+    (a - b).norm() < 1e-12
+}
+
+#[test]
+fn placement_scales_rotates_then_translates_a_chain() {
+    let s = scene(
+        r#"
+[[structures]]
+name = "c"
+kind = "chain"
+material = "m"
+node_radius = 0.01
+points = [[0, 0, 0], [1, 0, 0], [1, 1, 0]]
+placement = { scale = 2, axis = [0, 0, 1], angle_deg = 90, translate = [10, 0, 0] }
+"#,
+    );
+    let p = &s.model.particles.pos;
+    assert!(close(p[0], Vec3::new(10.0, 0.0, 0.0)));
+    assert!(close(p[1], Vec3::new(10.0, 2.0, 0.0)));
+    assert!(close(p[2], Vec3::new(8.0, 2.0, 0.0)));
+    // rest lengths follow the scale, node radius does not
+    assert!((s.model.connections[0].rest_length - 2.0).abs() < 1e-12);
+    assert_eq!(s.model.particles.radius[0], 0.01);
+}
+
+#[test]
+fn euler_placement_moves_a_tube_rigidly() {
+    let body = |placement: &str| {
+        format!(
+            r#"
+[[structures]]
+name = "t"
+kind = "tube"
+material = "m"
+node_radius = 0.002
+radius = 0.1
+length = 0.8
+around = 8
+along = 4
+{placement}
+"#
+        )
+    };
+    let plain = scene(&body(""));
+    let moved = scene(&body("placement = { rotate_deg = [0, -90, 0], translate = [1, 2, 3] }"));
+    // rotating x by -90° about y points the axis along +z
+    let r = nalgebra::UnitQuaternion::from_euler_angles(0.0, (-90.0f64).to_radians(), 0.0);
+    for (a, b) in plain.model.particles.pos.iter().zip(&moved.model.particles.pos) {
+        assert!(close(Vec3::new(1.0, 2.0, 3.0) + r * a, *b));
+    }
+    let last = moved.model.particles.pos.last().unwrap();
+    assert!((last.z - 3.8).abs() < 1e-12);
+    assert!((plain.model.total_mass() - moved.model.total_mass()).abs() < 1e-15);
+}
+
+#[test]
+fn random_packing_has_no_overlap_stays_inside_and_is_deterministic() {
+    let (lo, hi) = (Vec3::new(-1.0, 0.0, 0.0), Vec3::new(1.0, 1.0, 0.5));
+    let a = random_packing(lo, hi, 0.02, 0.05, 500, 7).unwrap();
+    assert_eq!(a.len(), 500);
+    for (i, &(c, r)) in a.iter().enumerate() {
+        assert!((0.02..=0.05).contains(&r));
+        for k in 0..3 {
+            assert!(c[k] - r >= lo[k] && c[k] + r <= hi[k], "sphere {i} outside");
+        }
+        for &(d, s) in &a[..i] {
+            assert!((c - d).norm() >= r + s, "overlap with sphere {i}");
+        }
+    }
+    assert_eq!(a, random_packing(lo, hi, 0.02, 0.05, 500, 7).unwrap());
+    assert_ne!(a, random_packing(lo, hi, 0.02, 0.05, 500, 8).unwrap());
+    let err = random_packing(lo, hi, 0.1, 0.1, 100_000, 1).unwrap_err();
+    assert!(matches!(err, PackingError::Saturated { .. }), "{err}");
+    assert!(random_packing(hi, lo, 0.1, 0.1, 1, 1).is_err());
+    assert!(random_packing(lo, hi, 0.1, 0.05, 1, 1).is_err());
+}
+
+#[test]
+fn random_packing_is_fast_for_many_spheres() {
+    let (lo, hi) = (Vec3::zeros(), Vec3::new(1.0, 1.0, 1.0));
+    let start = std::time::Instant::now();
+    let a = random_packing(lo, hi, 0.005, 0.005, 200_000, 3).unwrap();
+    assert_eq!(a.len(), 200_000);
+    assert!(start.elapsed().as_secs_f64() < 20.0, "{:?}", start.elapsed());
+}
+
+#[test]
+fn lattice_packing_counts_and_bounds() {
+    let c = lattice_packing(Vec3::zeros(), Vec3::new(1.0, 0.5, 0.2), 0.05, 0.1).unwrap();
+    assert_eq!(c.len(), 10 * 5 * 2);
+    assert!(close(c[0], Vec3::new(0.05, 0.05, 0.05)));
+    assert!(close(*c.last().unwrap(), Vec3::new(0.95, 0.45, 0.15)));
+    assert!(lattice_packing(Vec3::zeros(), Vec3::new(1.0, 1.0, 1.0), 0.1, 0.15).is_err());
+    assert!(lattice_packing(Vec3::zeros(), Vec3::new(0.1, 1.0, 1.0), 0.1, 0.2).is_err());
+}
+
+#[test]
+fn sphere_groups_velocities_and_lattice_in_a_scene() {
+    let s = scene(
+        r#"
+[[spheres]]
+name = "grid"
+kind = "lattice"
+material = "m"
+box = { min = [0, 0, 0], max = [0.4, 0.4, 0.2] }
+radius = 0.1
+velocity = [1, 0, 0]
+angular_velocity = [0, 0, 3]
+
+[[boundary]]
+select = { spheres = "grid", box = { min = [0, 0, 0], max = [0.15, 1, 1] } }
+velocity = [0, 0, -1]
+"#,
+    );
+    let ps = &s.model.particles;
+    assert_eq!(ps.len(), 4);
+    assert!(ps.kind.iter().all(|&k| k == ParticleKind::Sphere));
+    assert_eq!(ps.ang_vel[3], Vec3::new(0.0, 0.0, 3.0));
+    // spheres at x = 0.1 get the imposed velocity and blocked translations, the others keep theirs
+    for i in 0..4 {
+        if ps.pos[i].x < 0.15 {
+            assert_eq!((ps.vel[i], ps.blocked[i]), (Vec3::new(0.0, 0.0, -1.0), Dofs::TRANSLATION));
+        } else {
+            assert_eq!((ps.vel[i], ps.blocked[i]), (Vec3::new(1.0, 0.0, 0.0), Dofs::NONE));
+        }
+    }
+}
+
+#[test]
+fn selections_by_side_box_plane_and_ids() {
+    let s = scene(
+        r#"
+[[structures]]
+name = "net"
+kind = "net"
+material = "m"
+node_radius = 0.001
+size = [1, 2]
+cells = [2, 4]
+
+[[structures]]
+name = "tube"
+kind = "tube"
+material = "m"
+node_radius = 0.001
+start = [5, 0, 0]
+radius = 0.1
+length = 1
+around = 6
+along = 3
+
+[[structures]]
+name = "disc"
+kind = "disc"
+material = "m"
+node_radius = 0.001
+center = [0, 0, 5]
+radius = 1
+rings = 2
+
+[[loads]]
+select = { structure = "net", side = "corners" }
+total_force = [0, 0, -4]
+
+[[loads]]
+select = { structure = "net", side = "u_max" }
+force = [1, 0, 0]
+
+[[loads]]
+select = { structure = "tube", side = "end" }
+moment = [1, 0, 0]
+ramp = { start = 0.1, duration = 0.2 }
+
+[[loads]]
+select = { structure = "net", plane = { point = [0, 1, 0], normal = [0, 1, 0] } }
+force = [0, 1, 0]
+
+[[loads]]
+select = { structure = "disc", side = "boundary" }
+force = [0, 0, 1]
+
+[[loads]]
+select = { ids = [3, 1, 3] }
+force = [0, 0, 1]
+"#,
+    );
+    let l = &s.loads;
+    assert_eq!(l[0].particles, vec![0, 2, 12, 14]);
+    assert_eq!(l[0].force, Vec3::new(0.0, 0.0, -1.0));
+    assert_eq!(l[1].particles, vec![2, 5, 8, 11, 14]);
+    let tube_first = 15u32;
+    assert_eq!(l[2].particles, (tube_first + 18..tube_first + 24).collect::<Vec<_>>());
+    for &p in &l[2].particles {
+        assert!((s.model.particles.pos[p as usize].x - 6.0).abs() < 1e-12);
+    }
+    assert!(
+        matches!(l[2].ramp, flexdem_integrate::Ramp::Linear { start, duration } if start == 0.1 && duration == 0.2)
+    );
+    // the plane y = 1 (tolerance: each node's radius) holds the net's middle row (and a
+    // node of the disc, left out by `structure = "net"`)
+    assert_eq!(l[3].particles, vec![6, 7, 8]);
+    let disc_first = tube_first + 24;
+    assert_eq!(l[4].particles, (disc_first + 7..disc_first + 19).collect::<Vec<_>>());
+    for &p in &l[4].particles {
+        let d = s.model.particles.pos[p as usize] - Vec3::new(0.0, 0.0, 5.0);
+        assert!((d.norm() - 1.0).abs() < 1e-12);
+    }
+    assert_eq!(l[5].particles, vec![1, 3]);
+}
+
+#[test]
+fn a_mesh_structure_is_read_relative_to_the_scene_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let meshes = Path::new(env!("CARGO_MANIFEST_DIR")).join("../mesh/tests/data/meshes/cube.obj");
+    std::fs::create_dir(dir.path().join("meshes")).unwrap();
+    std::fs::copy(meshes, dir.path().join("meshes/cube.obj")).unwrap();
+    let text = format!(
+        "{HEAD}\n[[structures]]\nname = \"box\"\nkind = \"mesh\"\nmaterial = \"m\"\n\
+         node_radius = 0.01\nfile = \"meshes/cube.obj\"\nplacement = {{ scale = 3 }}\n"
+    );
+    let path = dir.path().join("scene.toml");
+    std::fs::write(&path, text).unwrap();
+    let s = flexdem_scene::load_scene(&path).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(s.model.pfacets.len(), 12);
+    assert_eq!(s.model.structures[0].nodes.len(), 8);
+    assert_eq!(s.output.directory, dir.path().join("output"));
+}
