@@ -29,6 +29,7 @@ mod medit;
 mod msh;
 mod msh_ascii;
 mod msh_binary;
+mod msh_data;
 mod obj;
 mod stl;
 mod text;

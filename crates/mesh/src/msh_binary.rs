@@ -7,7 +7,7 @@
 
 use flexdem_geom::Vec3;
 
-use crate::msh::{is_triangle, nodes_per_element, At, Cursor, MshData, Node, Triangle};
+use crate::msh_data::{is_triangle, nodes_per_element, At, Cursor, MshData, Node, Triangle};
 use crate::MeshError;
 
 /// Layout of binary data.
