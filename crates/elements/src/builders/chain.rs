@@ -1,7 +1,7 @@
 //! Chains, cables and beams from a polyline (YADE's `cylinderConnection`): one node per point,
 //! one connection per consecutive pair.
 
-use super::{add_skeleton, Skeleton, StructureOptions};
+use super::skeleton::{add_skeleton, Skeleton, StructureOptions};
 use crate::error::{count, finite_point, positive, BuildError};
 use crate::{Model, StructureId};
 use flexdem_geom::{Real, Vec3};

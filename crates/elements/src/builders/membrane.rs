@@ -3,7 +3,7 @@
 //! (b − a) × (c − a) is the membrane's normal.
 
 use super::net::grid_points;
-use super::{add_skeleton, orthonormal_basis, Skeleton, StructureOptions};
+use super::skeleton::{add_skeleton, orthonormal_basis, Skeleton, StructureOptions};
 use crate::error::{count, direction, finite_point, positive, BuildError};
 use crate::{Model, StructureId};
 use flexdem_geom::{Real, Vec3};

@@ -13,7 +13,9 @@
 //! - **Duplicate triangles** (the same three vertices after merging, in any order) are
 //!   rejected: two coincident PFacets are a meshing error.
 
-use super::{add_skeleton, bounding_diagonal, Skeleton, StructureOptions, ZERO_EDGE_RELATIVE};
+use super::skeleton::{
+    add_skeleton, bounding_diagonal, Skeleton, StructureOptions, ZERO_EDGE_RELATIVE,
+};
 use crate::error::BuildError;
 use crate::{Model, StructureId};
 use flexdem_geom::{Real, TriMesh, Vec3};

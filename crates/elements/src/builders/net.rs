@@ -2,7 +2,7 @@
 //! nodes on a grid, connections along the grid lines, optionally one diagonal per cell; and
 //! the node layout shared with the PFacet rectangle, to pin edges and corners.
 
-use super::{add_skeleton, Skeleton, StructureOptions};
+use super::skeleton::{add_skeleton, Skeleton, StructureOptions};
 use crate::error::{count, direction, finite_point, positive, BuildError, ModelError};
 use crate::{Model, NodeId, StructureId};
 use flexdem_geom::{Real, Vec3};

@@ -1,7 +1,7 @@
 //! Closed sphere shells of PFacets: a regular polyhedron with its triangles subdivided and the
 //! new vertices pushed onto the sphere (paper §7's hollow sphere).
 
-use super::{add_skeleton, Skeleton, StructureOptions};
+use super::skeleton::{add_skeleton, Skeleton, StructureOptions};
 use crate::error::{finite_point, positive, BuildError};
 use crate::{Model, StructureId};
 use flexdem_geom::{Real, Vec3};

@@ -1,6 +1,6 @@
 //! Tubes (open cylinders) of PFacets (paper §6–7).
 
-use super::{add_skeleton, orthonormal_basis, Skeleton, StructureOptions};
+use super::skeleton::{add_skeleton, orthonormal_basis, Skeleton, StructureOptions};
 use crate::error::{count, direction, finite_point, positive, BuildError};
 use crate::{Model, StructureId};
 use flexdem_geom::{Real, Vec3};
