@@ -14,6 +14,7 @@ pub mod cases;
 mod error;
 pub mod plot;
 pub mod report;
+pub mod rest;
 pub mod runner;
 
 pub use cases::{cases, Case};

@@ -3,8 +3,6 @@
 use crate::cases::{cases, Case};
 use crate::report::{CaseReport, Context};
 use crate::ValidationError;
-use flexdem_geom::Real;
-use flexdem_integrate::Simulation;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -141,34 +139,6 @@ pub fn write_report(
     std::fs::write(&path, report_markdown(quick, results))
         .map_err(|source| ValidationError::Io { path: path.clone(), source })?;
     Ok(path)
-}
-
-/// Largest speed of any particle (m/s).
-pub fn max_speed(sim: &Simulation) -> Real {
-    sim.model.particles.vel.iter().map(|v| v.norm()).fold(0.0, Real::max)
-}
-
-/// Runs `sim` in chunks of `chunk` steps until the largest speed stays below `tol` for a
-/// whole chunk or `max_steps` are done; returns the steps run.
-pub fn run_to_rest(
-    sim: &mut Simulation,
-    tol: Real,
-    chunk: u64,
-    max_steps: u64,
-) -> Result<u64, ValidationError> {
-    let mut done = 0;
-    while done < max_steps {
-        let mut quiet = true;
-        for _ in 0..chunk {
-            sim.step()?;
-            quiet &= max_speed(sim) <= tol;
-        }
-        done += chunk;
-        if quiet {
-            break;
-        }
-    }
-    Ok(done)
 }
 
 #[cfg(test)]

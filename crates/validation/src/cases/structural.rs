@@ -16,7 +16,7 @@
 
 use crate::plot::{plot_xy, Curve, CurveStyle, PlotSpec};
 use crate::report::{CaseReport, Check, Context, Figure};
-use crate::runner::run_to_rest;
+use crate::rest::run_to_rest;
 use crate::ValidationError;
 use flexdem_contact::Material;
 use flexdem_elements::builders::{chain, StructureOptions};

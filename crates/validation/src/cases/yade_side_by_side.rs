@@ -9,7 +9,7 @@
 
 use crate::plot::{plot_xy, Curve, CurveStyle, PlotSpec};
 use crate::report::{CaseReport, Check, Context, Figure};
-use crate::runner::{max_speed, run_to_rest};
+use crate::rest::{max_speed, run_to_rest};
 use crate::ValidationError;
 use flexdem_contact::{LinkKinematicsMode, Material};
 use flexdem_elements::builders::{chain, net, straight_line, GridLayout, StructureOptions};
