@@ -15,6 +15,7 @@ pub mod builders;
 mod dofs;
 mod element;
 mod error;
+mod ids;
 mod mass;
 mod model;
 pub mod pairs;
@@ -29,21 +30,7 @@ pub use builders::StructureOptions;
 pub use dofs::*;
 pub use element::*;
 pub use error::{BuildError, Item, ModelError};
+pub use ids::*;
 pub use mass::*;
 pub use model::*;
 pub use particles::*;
-
-/// Id of a particle (free sphere or node): its index in [`Particles`].
-pub type ParticleId = u32;
-/// Id of a structure node (a particle of kind [`ParticleKind::Node`]).
-pub type NodeId = u32;
-/// Id of a connection: its index in [`Model::connections`].
-pub type ConnectionId = u32;
-/// Id of a PFacet: its index in [`Model::pfacets`].
-pub type PFacetId = u32;
-/// Id of a material: its index in [`Model::materials`].
-pub type MaterialId = u32;
-/// Id of a wall: its index in [`Model::walls`].
-pub type WallId = u32;
-/// Id of a structure: its index in [`Model::structures`].
-pub type StructureId = u32;

@@ -10,11 +10,6 @@
 //! - degenerate inputs (zero-length segments, flat triangles) fall back to the
 //!   lower-dimensional problem and never produce NaN.
 
-/// Scalar type of every computation.
-pub type Real = f64;
-/// A 3-vector (positions are vectors too).
-pub type Vec3 = nalgebra::Vector3<Real>;
-
 mod aabb;
 mod location;
 mod point_segment;
@@ -23,6 +18,7 @@ mod segment_segment;
 mod segment_triangle;
 mod triangle_triangle;
 mod trimesh;
+mod types;
 
 #[cfg(any(test, feature = "proptest-support"))]
 pub mod proptest_support;
@@ -35,3 +31,4 @@ pub use segment_segment::*;
 pub use segment_triangle::*;
 pub use triangle_triangle::*;
 pub use trimesh::*;
+pub use types::{Real, Vec3};

@@ -11,7 +11,8 @@
 use flexdem_geom::TriMesh;
 
 use crate::text::{leading_tokens, one_based, parse_point, parse_usize, NumberedLines};
-use crate::{drop_unused_vertices, MeshError};
+use crate::vertices::drop_unused_vertices;
+use crate::MeshError;
 
 /// Bytes each declared item needs at least ("0 0 0\n" for a vertex, "1 2\n" for an edge or
 /// face): memory is reserved for no more items than the text can hold, whatever the header

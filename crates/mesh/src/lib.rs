@@ -24,6 +24,7 @@
 //! with "solid " as ASCII (and fails); `tobj`'s errors are unit variants without the line,
 //! and its coordinates `f32` unless a feature is on; `mshio` reads msh 4.1 only (not 2.2).
 
+mod error;
 mod gts;
 mod medit;
 mod msh;
@@ -33,12 +34,13 @@ mod msh_data;
 mod obj;
 mod stl;
 mod text;
+mod vertices;
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-use flexdem_geom::{TriMesh, Vec3};
-use thiserror::Error;
+use flexdem_geom::TriMesh;
 
+pub use error::MeshError;
 pub use gts::read_gts;
 pub use medit::read_medit;
 pub use msh::read_msh;
@@ -47,69 +49,6 @@ pub use stl::read_stl;
 
 /// File extensions [`read_mesh`] understands, lower case, without the dot.
 pub const SUPPORTED_EXTENSIONS: [&str; 5] = ["msh", "stl", "obj", "gts", "mesh"];
-
-/// Why a mesh could not be read. Every variant names the file; text formats give the line,
-/// binary data the byte offset, and the message says what was expected and what was found.
-#[derive(Debug, Error)]
-pub enum MeshError {
-    /// The file could not be read.
-    #[error("{}: {source}", path.display())]
-    Io {
-        /// The file.
-        path: PathBuf,
-        /// The underlying error.
-        source: std::io::Error,
-    },
-    /// The extension names no supported format.
-    #[error(
-        "{}: unsupported mesh file extension {extension:?}; supported: .msh, .stl, .obj, .gts, .mesh",
-        path.display()
-    )]
-    UnsupportedExtension {
-        /// The file.
-        path: PathBuf,
-        /// Its extension (empty if it has none).
-        extension: String,
-    },
-    /// A text file (or the text part of a Gmsh file) is malformed at a line.
-    #[error("{file}:{line}: {message}")]
-    Text {
-        /// Name of the file (as given to the reader).
-        file: String,
-        /// Line number, 1-based.
-        line: usize,
-        /// What was expected and what was found.
-        message: String,
-    },
-    /// Binary data is malformed at a byte offset.
-    #[error("{file}: byte {offset}: {message}")]
-    Binary {
-        /// Name of the file (as given to the reader).
-        file: String,
-        /// Byte offset from the start of the file.
-        offset: usize,
-        /// What was expected and what was found.
-        message: String,
-    },
-    /// The file as a whole is malformed (for instance its size does not match its header).
-    #[error("{file}: {message}")]
-    File {
-        /// Name of the file (as given to the reader).
-        file: String,
-        /// What was expected and what was found.
-        message: String,
-    },
-}
-
-impl MeshError {
-    pub(crate) fn text(file: &str, line: usize, message: impl Into<String>) -> Self {
-        MeshError::Text { file: file.to_owned(), line, message: message.into() }
-    }
-
-    pub(crate) fn binary(file: &str, offset: usize, message: impl Into<String>) -> Self {
-        MeshError::Binary { file: file.to_owned(), offset, message: message.into() }
-    }
-}
 
 /// Reads a triangle mesh, choosing the format from the extension (case-insensitive): `.msh`
 /// (Gmsh 2.2 or 4.1, ASCII or binary), `.stl` (ASCII or binary), `.obj`, `.gts`, `.mesh`
@@ -132,29 +71,4 @@ pub fn read_mesh(path: &Path) -> Result<TriMesh, MeshError> {
         "gts" => read_gts(&String::from_utf8_lossy(&bytes), &name),
         _ => read_medit(&String::from_utf8_lossy(&bytes), &name),
     }
-}
-
-/// Keeps only the vertices some triangle uses, in their original order, and renumbers the
-/// triangles. Callers check every index is `< vertices.len()` first; an index that is not
-/// (never produced by the readers) would be kept as is.
-pub(crate) fn drop_unused_vertices(vertices: &[Vec3], triangles: Vec<[usize; 3]>) -> TriMesh {
-    let mut used = vec![false; vertices.len()];
-    for triangle in &triangles {
-        for &v in triangle {
-            if let Some(flag) = used.get_mut(v) {
-                *flag = true;
-            }
-        }
-    }
-    let mut new_index = vec![usize::MAX; vertices.len()];
-    let mut kept = Vec::new();
-    for (old, (&vertex, &is_used)) in vertices.iter().zip(&used).enumerate() {
-        if is_used {
-            new_index[old] = kept.len();
-            kept.push(vertex);
-        }
-    }
-    let triangles =
-        triangles.into_iter().map(|t| t.map(|v| new_index.get(v).copied().unwrap_or(v))).collect();
-    TriMesh::new(kept, triangles)
 }

@@ -7,7 +7,8 @@
 use flexdem_geom::{TriMesh, Vec3};
 
 use crate::text::{parse_i64, parse_point, parse_usize};
-use crate::{drop_unused_vertices, MeshError};
+use crate::vertices::drop_unused_vertices;
+use crate::MeshError;
 
 /// A whitespace-separated word of the file with its line number.
 #[derive(Clone, Copy)]

@@ -70,7 +70,7 @@ impl MshData {
             }
             triangles.push(indices);
         }
-        Ok(crate::drop_unused_vertices(&vertices, triangles))
+        Ok(crate::vertices::drop_unused_vertices(&vertices, triangles))
     }
 }
 

@@ -9,7 +9,8 @@
 use flexdem_geom::{TriMesh, Vec3};
 
 use crate::text::{parse_i64, parse_point, NumberedLines};
-use crate::{drop_unused_vertices, MeshError};
+use crate::vertices::drop_unused_vertices;
+use crate::MeshError;
 
 /// A triangle of 0-based vertex indices, unchecked (a positive index may name a vertex
 /// defined later), with the line it came from.

@@ -84,20 +84,6 @@ impl TubeCase {
         PI * self.node_radius.powi(2) * self.density * (a + b + a.hypot(b)) / (a * b)
     }
 
-    /// Period of the slowest of the two modes that govern the quasi-static bending: the first
-    /// bending mode of the tube as a cantilever, ω = 1.875²·√(EI/(μL⁴)) with EI = πR³·C and
-    /// μ = 2πR·ρ_s, and the ovalisation (n = 2) mode of a ring,
-    /// ω² = (36/5)·D/(ρ_s·R⁴) (ring of bending stiffness D per unit length).
-    pub fn slowest_period(&self) -> Real {
-        let lattice = super::LatticeStiffness::of(self);
-        let rho_s = self.areal_mass();
-        let ei = PI * self.radius.powi(3) * lattice.axial;
-        let mu = 2.0 * PI * self.radius * rho_s;
-        let w_bend = 1.875_f64.powi(2) * (ei / (mu * self.length.powi(4))).sqrt();
-        let w_oval = (7.2 * lattice.ring_bending / (rho_s * self.radius.powi(4))).sqrt();
-        2.0 * PI / w_bend.min(w_oval)
-    }
-
     /// The model: one material, the tube along x, the ring at x = 0 blocked along x, its node
     /// 0 also along y and z and its opposite node along y (no rigid-body motion, free
     /// ovalisation). Returns the model and its rings.
