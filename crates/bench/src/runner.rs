@@ -195,9 +195,9 @@ pub fn run_case(
     Ok(BenchResult {
         scene,
         size,
-        particles: sim.model.particles.len(),
-        connections: sim.model.connections.len(),
-        pfacets: sim.model.pfacets.len(),
+        particles: sim.model().particles.len(),
+        connections: sim.model().connections.len(),
+        pfacets: sim.model().pfacets.len(),
         threads,
         warmup_steps: warmup,
         steps,
@@ -211,10 +211,10 @@ pub fn run_case(
             links: after.links.saturating_sub(before.links),
             integration: after.integration.saturating_sub(before.integration),
         },
-        contacts: sim.contacts.list.len(),
+        contacts: sim.contacts().len(),
         memory_bytes,
         probe: scene.probe(&sim),
-        checksum: state_checksum(&sim.model, sim.contacts.list.len()),
+        checksum: state_checksum(&sim.model(), sim.contacts().len()),
     })
 }
 

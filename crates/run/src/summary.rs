@@ -163,19 +163,19 @@ pub struct OutputSummary {
 impl Counts {
     /// The counts of `sim` now.
     pub fn of(sim: &Simulation) -> Counts {
-        let m = &sim.model;
+        let m = &sim.model();
         let spheres = m.particles.kind.iter().filter(|k| **k == ParticleKind::Sphere).count();
         Counts {
             particles: m.particles.len(),
             spheres,
             nodes: m.particles.len() - spheres,
             connections: m.connections.len(),
-            intact_links: sim.links.intact(),
-            broken_links: sim.links.len() - sim.links.intact(),
+            intact_links: sim.links().intact(),
+            broken_links: sim.links().len() - sim.links().intact(),
             pfacets: m.pfacets.len(),
             walls: m.walls.len(),
             structures: m.structures.len(),
-            contacts: sim.contacts.list.len(),
+            contacts: sim.contacts().len(),
         }
     }
 }
