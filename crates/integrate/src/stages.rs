@@ -91,10 +91,27 @@ impl Simulation {
         self.state.clock.previous_dt = dt;
         self.state.clock.time += dt;
         self.state.clock.steps += 1;
-        self.check_finite()?;
-        self.account_energy(&work, load_work, &link_sums, dt);
-        self.watch_energy()?;
-        self.time_step_stage(appeared)
+        self.bookkeeping_stage(&work, load_work, &link_sums, dt, appeared)
+    }
+
+    /// Bookkeeping after the step: the checks (NaN, a particle jumping), the energy terms,
+    /// the energy watch and the time step.
+    fn bookkeeping_stage(
+        &mut self,
+        work: &StepWork,
+        load_work: Real,
+        link_sums: &LinkUpdate,
+        dt: Real,
+        appeared: bool,
+    ) -> Result<(), SimulationError> {
+        let t0 = self.pipeline.timers.start();
+        let result = self.check_finite().and_then(|()| {
+            self.account_energy(work, load_work, link_sums, dt);
+            self.watch_energy()?;
+            self.time_step_stage(appeared)
+        });
+        self.pipeline.timers.stop(Stage::Bookkeeping, t0);
+        result
     }
 
     /// Collision: rebuilds the candidate pairs when a particle has moved beyond its margin.
@@ -154,6 +171,7 @@ impl Simulation {
         if !self.is_loaded() {
             return 0.0;
         }
+        let t0 = self.pipeline.timers.start();
         self.pipeline.external_force.iter_mut().for_each(|f| *f = Vec3::zeros());
         self.pipeline.external_torque.iter_mut().for_each(|t| *t = Vec3::zeros());
         for load in &self.state.loads {
@@ -177,7 +195,9 @@ impl Simulation {
         for (t, e) in self.pipeline.torque.iter_mut().zip(&self.pipeline.external_torque) {
             *t += e;
         }
-        self.external_power() * 0.5 * previous
+        let work = self.external_power() * 0.5 * previous;
+        self.pipeline.timers.stop(Stage::Loads, t0);
+        work
     }
 
     /// Whether loads or a force hook act.

@@ -69,7 +69,7 @@ pub struct Summary {
     pub checkpoint: Option<PathBuf>,
 }
 
-/// Wall-clock time per stage (s); `other` is output, checkpoints and bookkeeping.
+/// Wall-clock time per stage (s); `other` is output, checkpoints and progress.
 #[derive(Clone, Copy, Debug, Serialize)]
 pub struct Stages {
     /// Broad phase.
@@ -78,8 +78,12 @@ pub struct Stages {
     pub contacts: f64,
     /// Beam links.
     pub links: f64,
+    /// Imposed loads and the force hook.
+    pub loads: f64,
     /// Leapfrog integration.
     pub integration: f64,
+    /// Checks, energy terms and watch, time step.
+    pub bookkeeping: f64,
     /// Everything else: output, checkpoints, progress.
     pub other: f64,
 }
@@ -205,7 +209,9 @@ impl Stages {
             collision: t.collision.as_secs_f64(),
             contacts: t.contacts.as_secs_f64(),
             links: t.links.as_secs_f64(),
+            loads: t.loads.as_secs_f64(),
             integration: t.integration.as_secs_f64(),
+            bookkeeping: t.bookkeeping.as_secs_f64(),
             other: wall.saturating_sub(t.total()).as_secs_f64(),
         }
     }

@@ -634,7 +634,7 @@ fn long_run(file: &str) -> Result<LongRun, ValidationError> {
         // they are compared with is measured there too (one step of motion, v·dt, is of the
         // order of the tolerance)
         let look = (sim.steps() + 1) % PENETRATION_EVERY == 0;
-        let distance = if look { min_self_distance(&sim.model()) } else { Real::INFINITY };
+        let distance = if look { min_self_distance(sim.model()) } else { Real::INFINITY };
         if let Err(e) = sim.step() {
             run.engine_error = Some(e.to_string());
             break;

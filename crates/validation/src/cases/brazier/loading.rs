@@ -220,14 +220,14 @@ fn wind(run: &mut Bending, periods: Real) -> Result<FinalState, ValidationError>
     let mut balance_error: Real = 0.0;
     while run.sim.time() < end {
         run.advance(0.0)?;
-        min_during = min_during.min(min_self_distance(&run.sim.model()));
+        min_during = min_during.min(min_self_distance(run.sim.model()));
         let change = (run.sim.energy().balance() - balance0).abs();
         balance_error = balance_error.max(change / run.sim.energy_watch().scale);
     }
     let largest_overlap =
         run.sim.contacts().iter().map(|c| c.forces.normal_force / c.params.kn).fold(0.0, Real::max);
     Ok(FinalState {
-        min_distance: min_self_distance(&run.sim.model()),
+        min_distance: min_self_distance(run.sim.model()),
         min_distance_during: min_during,
         largest_overlap,
         contacts: run.sim.contacts().len(),
