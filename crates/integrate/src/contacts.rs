@@ -72,7 +72,7 @@ struct Touching {
 }
 
 /// The contacts with their history: the part of the simulation state a checkpoint keeps
-/// (the buffers that find and update them are [`ContactPipeline`]'s).
+/// (the buffers that find and update them are `ContactPipeline`'s).
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct Contacts {
     /// Current contacts, sorted by key.
