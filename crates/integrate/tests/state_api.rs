@@ -63,6 +63,12 @@ fn a_state_that_does_not_fit_its_model_is_refused() {
     });
     let err = Simulation::from_state(s).map(|_| ()).unwrap_err().to_string();
     assert!(err.contains("inconsistent parts"), "{err}");
+    // links that do not fit the model (a damaged checkpoint used to be restored and panic in
+    // `Links::add_loads` at the first step)
+    let mut s = sim.state().clone();
+    s.links.nodes[1] = [0, 3];
+    let err = Simulation::from_state(s).map(|_| ()).unwrap_err().to_string();
+    assert!(err.contains("inconsistent parts"), "{err}");
 }
 
 #[test]
