@@ -132,7 +132,8 @@ impl Simulation {
         self.pipeline.force_hook = Some(hook);
     }
 
-    /// Changes the settings, validated first (nothing changes on error). A new Verlet factor
+    /// Changes the settings, validated first (nothing changes when they are refused; an error
+    /// of the time step estimate comes after the change). A new Verlet factor
     /// rebuilds the collider, a new time step rule re-estimates the time step; the link
     /// kinematics cannot change (the links were made with it: build a new simulation).
     pub fn set_settings(&mut self, settings: Settings) -> Result<(), SimulationError> {
@@ -301,8 +302,10 @@ impl Simulation {
     /// (collider, adjacency, contact buffers), the links when the connections changed (made
     /// anew at rest in the current configuration), and the time step. When the particles,
     /// connections, PFacets or walls changed, the contacts end (their friction stays counted
-    /// as dissipated) and are found again at the next step. On error the model is left as it
-    /// was. Costs a copy of the model: for velocities, positions and walls use the setters.
+    /// as dissipated) and are found again at the next step. A model that fails the checks is
+    /// put back as it was; an error of the time step estimate (no stiffness anywhere) comes
+    /// after the change. Costs a copy of the model: for velocities, positions and walls use
+    /// the setters.
     pub fn edit_model<R>(
         &mut self,
         edit: impl FnOnce(&mut Model) -> R,
