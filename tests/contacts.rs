@@ -30,7 +30,7 @@ fn normal_impact_contact_time_and_restitution() {
     let settings = Settings { time_step: TimeStep::Fixed(dt), ..Settings::default() };
     let mut sim = Simulation::new(model, settings).unwrap();
     let gap = |s: &Simulation| {
-        let p = &s.model.particles.pos;
+        let p = &s.model().particles.pos;
         (p[1] - p[0]).norm() - 2.0 * r
     };
     let (mut start, mut end) = (None, None);
@@ -50,7 +50,7 @@ fn normal_impact_contact_time_and_restitution() {
     assert!((duration / tc - 1.0).abs() < 1e-3, "contact time {duration} vs {tc}");
     // a few steps later, when the spring is released
     sim.run(10).unwrap();
-    let restitution = sim.model.particles.vel[1].x / v;
+    let restitution = sim.model().particles.vel[1].x / v;
     assert!((restitution - 1.0).abs() < 1e-3, "restitution {restitution}");
 }
 
@@ -76,8 +76,8 @@ fn oblique_impact_on_a_wall_in_gross_sliding() {
         while sim.time() < 3.0 * tc {
             sim.step().unwrap();
         }
-        let v = sim.model.particles.vel[0];
-        let w = sim.model.particles.ang_vel[0];
+        let v = sim.model().particles.vel[0];
+        let w = sim.model().particles.ang_vel[0];
         assert!(v.z > 0.0, "the sphere bounced: {v}");
         let ratio = v.x / vt;
         let expected = 1.0 - mu * 2.0 / theta.tan();
@@ -126,13 +126,13 @@ fn sliding_across_elements_has_no_jump() {
         let settings = Settings { time_step: TimeStep::Fixed(2e-4), ..Settings::default() };
         let mut sim = Simulation::new(model, settings).unwrap();
         sim.step().unwrap();
-        let fn0 = sim.contacts.list[0].forces.normal_force;
+        let fn0 = sim.contacts()[0].forces.normal_force;
         let mut saturated = false;
         let mut features = std::collections::BTreeSet::new();
-        while sim.model.particles.pos[sphere as usize].x < 0.9 {
+        while sim.model().particles.pos[sphere as usize].x < 0.9 {
             sim.step().unwrap();
-            assert_eq!(sim.contacts.list.len(), 1, "{structure}: {:?}", sim.contacts.list);
-            let c = &sim.contacts.list[0];
+            assert_eq!(sim.contacts().len(), 1, "{structure}: {:?}", sim.contacts());
+            let c = &sim.contacts()[0];
             features.insert(format!("{:?}", c.site2.feature).chars().take(4).collect::<String>());
             let f = c.forces.normal_force;
             assert!((f / fn0 - 1.0).abs() < 1e-6, "{structure}: normal force {f} vs {fn0}");
@@ -144,7 +144,7 @@ fn sliding_across_elements_has_no_jump() {
                 assert!(
                     !saturated,
                     "{structure}: shear force dropped to {fs} (limit {limit}) at x = {}",
-                    sim.model.particles.pos[sphere as usize].x
+                    sim.model().particles.pos[sphere as usize].x
                 );
             }
         }
@@ -164,11 +164,11 @@ fn sphere_dropped_on_a_net_comes_to_rest() {
         quiet = if v < 1e-4 { quiet + 1 } else { 0 };
     }
     assert!(quiet >= 2000, "still moving at t = {}", sim.time());
-    let z = sim.model.particles.pos[sphere as usize].z;
+    let z = sim.model().particles.pos[sphere as usize].z;
     assert!(z > -0.2 && z < 0.05, "the sphere rests at z = {z}, on the net");
     // the net carries the sphere's weight: contact forces balance gravity
-    let weight = sim.model.particles.mass[sphere as usize] * 9.81;
-    let up: Real = sim.contacts.list.iter().map(|c| -c.forces.force_on_2.z).sum();
+    let weight = sim.model().particles.mass[sphere as usize] * 9.81;
+    let up: Real = sim.contacts().iter().map(|c| -c.forces.force_on_2.z).sum();
     assert!((up.abs() / weight - 1.0).abs() < 1e-3, "contacts carry {up} of {weight}");
 }
 
@@ -209,11 +209,11 @@ fn results_do_not_depend_on_the_thread_count() {
         let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
         pool.install(|| {
             let (mut sim, _) = net_drop(0.1);
-            while sim.contacts.list.is_empty() {
+            while sim.contacts().is_empty() {
                 sim.step().unwrap();
             }
             sim.run(2000).unwrap();
-            sim.model.particles.pos.clone()
+            sim.model().particles.pos.clone()
         })
     };
     let (one, two) = (run(1), run(2));

@@ -39,7 +39,7 @@ fn drift(sim: &mut Simulation, steps: u64) -> (Real, Real) {
         let e = sim.energy();
         worst = worst.max((e.balance() - b0).abs());
         scale = scale.max(e.gravity_work.abs()).max(e.stored());
-        touched |= !sim.contacts.list.is_empty();
+        touched |= !sim.contacts().is_empty();
     }
     assert!(touched, "the net never reached the sphere");
     (worst, scale)

@@ -71,15 +71,15 @@ fn the_work_of_the_force_hook_is_counted() {
 /// as from an infinitely heavy body, the boundary's work is its kinetic energy 2·m·v², and the
 /// balance closes exactly (linear springs, a constant step).
 fn hit_and_leave(sim: &mut Simulation, s: u32, mass: Real, v: Real) {
-    while sim.contacts.list.is_empty() {
+    while sim.contacts().is_empty() {
         sim.step().unwrap();
     }
-    while !sim.contacts.list.is_empty() {
+    while !sim.contacts().is_empty() {
         sim.step().unwrap();
     }
     sim.run(10).unwrap();
     let e = sim.energy();
-    let speed = sim.model.particles.vel[s as usize].z;
+    let speed = sim.model().particles.vel[s as usize].z;
     assert!((speed / (2.0 * v) - 1.0).abs() < 1e-2, "the sphere leaves at {speed}");
     assert!((e.boundary_work / (2.0 * mass * v * v) - 1.0).abs() < 2e-2, "{e:?}");
     assert!(sim.relative_balance_error().abs() < 1e-9, "{e:?}");
@@ -157,7 +157,7 @@ fn a_run_that_creates_energy_stops_and_says_where() {
         let settings = Settings { energy_tolerance: tolerance, ..fixed(1e-4) };
         let mut sim = Simulation::new(model, settings).unwrap();
         sim.run(100).unwrap();
-        sim.model.particles.vel[1] = Vec3::new(0.0, 2.0, 0.0);
+        sim.set_velocity(1, Vec3::new(0.0, 2.0, 0.0)).unwrap();
         sim.run(100)
     };
     match run(Some(0.05)) {

@@ -30,7 +30,7 @@ fn free_fall_follows_the_parabola() {
     sim.run(4999).unwrap();
     let t = sim.time();
     let exact = Vec3::new(0.0, 0.0, 1.0) + Vec3::new(0.5, 0.0, 2.0) * t + g * (0.5 * t * t);
-    let x = sim.model.particles.pos[0];
+    let x = sim.model().particles.pos[0];
     assert!((x - exact).norm() < 0.5 * 9.81 * 1e-4 * t + 1e-9, "{x} vs {exact}");
     // energy: kinetic gained = work of gravity, to round-off
     let e = sim.energy();
@@ -42,8 +42,8 @@ fn a_fixed_step_above_the_critical_one_warns() {
     let (sim, _) =
         common::cantilever(10, 1.0, 0.01, 1e8, 0.3, 1000.0, LinkKinematicsMode::Beam, 0.0);
     let crit = sim.critical_dt();
-    let settings = Settings { time_step: TimeStep::Fixed(3.0 * crit), ..sim.settings.clone() };
-    let sim = Simulation::new(sim.model.clone(), settings).unwrap();
+    let settings = Settings { time_step: TimeStep::Fixed(3.0 * crit), ..sim.settings().clone() };
+    let sim = Simulation::new(sim.model().clone(), settings).unwrap();
     assert!(
         sim.warnings().iter().any(|w| w.contains("above the critical step")),
         "{:?}",
@@ -85,10 +85,10 @@ fn a_fixed_step_overtaken_by_contacts_warns_during_the_run() {
 fn a_thin_cable_moving_more_than_its_radius_per_step_is_not_unstable() {
     let (sim, tip) =
         common::cantilever(10, 1.0, 2e-6, 1e8, 0.3, 1000.0, LinkKinematicsMode::Beam, 0.0);
-    let settings = Settings { gravity: Vec3::new(0.0, 0.0, -9.81), ..sim.settings.clone() };
-    let mut sim = Simulation::new(sim.model.clone(), settings).unwrap();
+    let settings = Settings { gravity: Vec3::new(0.0, 0.0, -9.81), ..sim.settings().clone() };
+    let mut sim = Simulation::new(sim.model().clone(), settings).unwrap();
     sim.run(3000).unwrap();
-    let p = &sim.model.particles;
+    let p = &sim.model().particles;
     let step_motion = p.vel[tip as usize].norm() * sim.dt();
     assert!(step_motion > 10.0 * p.radius[tip as usize], "the tip moved {step_motion} m per step");
     assert!(p.pos[tip as usize].z < -0.1, "the cable swung down: {:?}", p.pos[tip as usize]);
@@ -101,8 +101,8 @@ fn an_unstable_run_stops_with_an_error_naming_the_body() {
     let (mut sim, tip) =
         common::cantilever(10, 1.0, 0.01, 1e8, 0.3, 1000.0, LinkKinematicsMode::Beam, 0.0);
     let settings =
-        Settings { time_step: TimeStep::Fixed(10.0 * sim.critical_dt()), ..sim.settings.clone() };
-    sim = Simulation::new(sim.model.clone(), settings).unwrap();
+        Settings { time_step: TimeStep::Fixed(10.0 * sim.critical_dt()), ..sim.settings().clone() };
+    sim = Simulation::new(sim.model().clone(), settings).unwrap();
     sim.add_load(common::tip_load(tip, Vec3::new(0.0, 0.0, -1.0), Vec3::zeros())).unwrap();
     let err = sim.run(100_000).unwrap_err();
     let msg = err.to_string();
@@ -112,7 +112,7 @@ fn an_unstable_run_stops_with_an_error_naming_the_body() {
     );
     assert!(msg.contains("particle") && msg.contains("smaller dt"), "{msg}");
     assert!(
-        sim.model.particles.pos.iter().all(|p| p.iter().all(|x| x.is_finite()))
+        sim.model().particles.pos.iter().all(|p| p.iter().all(|x| x.is_finite()))
             || msg.contains("non-finite")
     );
 }
@@ -149,13 +149,13 @@ fn a_moving_wall_pushes_a_sphere() {
     let mut lowest = Real::INFINITY;
     while sim.time() < 0.5 {
         sim.step().unwrap();
-        lowest = lowest.min(sim.model.particles.pos[0].z - sim.model.walls[0].point.z);
+        lowest = lowest.min(sim.model().particles.pos[0].z - sim.model().walls[0].point.z);
     }
-    let wall = sim.model.walls[0].point.z;
+    let wall = sim.model().walls[0].point.z;
     assert!((wall - sim.time()).abs() < 1e-9);
     // never pushed through the wall (overlap well under the radius), and lifted with it
     assert!(lowest > 0.045, "closest approach {lowest}");
-    assert!(sim.model.particles.pos[0].z > wall + 0.045);
+    assert!(sim.model().particles.pos[0].z > wall + 0.045);
 }
 
 #[test]
@@ -191,10 +191,10 @@ fn bad_settings_and_massless_bodies_are_refused() {
     assert!(err.contains("particle 0"), "{err}");
 }
 
-/// A simulation rebuilt from a snapshot continues bit-identically (contacts with their shear
+/// A simulation rebuilt from its state continues bit-identically (contacts with their shear
 /// history, links, time-step bookkeeping and energy terms included).
 #[test]
-fn a_snapshot_continues_bit_identically() {
+fn a_saved_state_continues_bit_identically() {
     use flexdem::elements::builders::{net, GridLayout, StructureOptions};
     use flexdem::elements::Dofs;
     let mut model = Model::new();
@@ -220,20 +220,20 @@ fn a_snapshot_continues_bit_identically() {
     let settings =
         Settings { gravity: Vec3::new(0.0, 0.0, -9.81), damping: 0.05, ..Settings::default() };
     let mut a = Simulation::new(model, settings).unwrap();
-    while a.contacts.list.is_empty() {
+    while a.contacts().is_empty() {
         a.step().unwrap();
     }
     a.run(500).unwrap();
-    let snap = a.snapshot();
+    let saved = a.state().clone();
     a.run(1500).unwrap();
-    let mut b = Simulation::from_snapshot(snap).unwrap();
+    let mut b = Simulation::from_state(saved).unwrap();
     b.run(1500).unwrap();
     assert_eq!(a.steps(), b.steps());
     assert_eq!(a.time().to_bits(), b.time().to_bits());
-    assert!(a.model.particles.pos == b.model.particles.pos, "positions differ");
-    assert!(a.model.particles.vel == b.model.particles.vel, "velocities differ");
+    assert!(a.model().particles.pos == b.model().particles.pos, "positions differ");
+    assert!(a.model().particles.vel == b.model().particles.vel, "velocities differ");
     assert_eq!(a.energy(), b.energy());
-    assert_eq!(a.contacts.list.len(), b.contacts.list.len());
+    assert_eq!(a.contacts().len(), b.contacts().len());
 }
 
 /// A path relative to the workspace root.

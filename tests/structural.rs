@@ -29,7 +29,7 @@ fn axial_bar_elongation() {
     let p = 10.0;
     sim.add_load(tip_load(tip, Vec3::new(p, 0.0, 0.0), Vec3::zeros())).unwrap();
     run_to_rest(&mut sim, 1e-9, 2000, 200_000);
-    let elongation = sim.model.particles.pos[tip as usize].x - L;
+    let elongation = sim.model().particles.pos[tip as usize].x - L;
     let expected = p * L / (E * area());
     assert!((elongation / expected - 1.0).abs() < 1e-6, "{elongation} vs {expected}");
 }
@@ -43,10 +43,10 @@ fn cantilever_beam_mode_matches_euler_bernoulli() {
         let p = 0.01;
         sim.add_load(tip_load(tip, Vec3::new(0.0, 0.0, -p), Vec3::zeros())).unwrap();
         run_to_rest(&mut sim, 1e-10, 5000, 2_000_000);
-        let w = -sim.model.particles.pos[tip as usize].z;
+        let w = -sim.model().particles.pos[tip as usize].z;
         let expected = p * L.powi(3) / (3.0 * E * inertia());
         assert!((w / expected - 1.0).abs() < 1e-4, "n = {n}: {w} vs {expected}");
-        let rot = sim.model.particles.ori[tip as usize].scaled_axis();
+        let rot = sim.model().particles.ori[tip as usize].scaled_axis();
         let expected_rot = p * L * L / (2.0 * E * inertia());
         assert!(
             (rot.y / expected_rot - 1.0).abs() < 1e-4,
@@ -64,7 +64,7 @@ fn cantilever_yade_mode_matches_yade() {
     let p = 0.01;
     sim.add_load(tip_load(tip, Vec3::new(0.0, 0.0, -p), Vec3::zeros())).unwrap();
     run_to_rest(&mut sim, 1e-10, 5000, 2_000_000);
-    let w = -sim.model.particles.pos[tip as usize].z;
+    let w = -sim.model().particles.pos[tip as usize].z;
     let eb = p * L.powi(3) / (3.0 * E * inertia());
     // the discrete prediction: P L^3/(3EI) + N P Ls^3/(12 E I) (Ls/(2r) - 1)
     let ls = L / 10.0;
@@ -72,7 +72,7 @@ fn cantilever_yade_mode_matches_yade() {
     assert!((w / predicted - 1.0).abs() < 1e-4, "{w} vs {predicted}");
     let yade_tip = 0.004286493337240651;
     assert!((w / yade_tip - 1.0).abs() < 1e-4, "ratio to YADE {}", w / yade_tip);
-    let rot = sim.model.particles.ori[tip as usize].scaled_axis().y;
+    let rot = sim.model().particles.ori[tip as usize].scaled_axis().y;
     assert!((rot / 0.006366102581528891 - 1.0).abs() < 1e-4, "rotation {rot}");
 }
 
@@ -83,7 +83,7 @@ fn torsion_twist_angle() {
     let t = 1e-3;
     sim.add_load(tip_load(tip, Vec3::zeros(), Vec3::new(t, 0.0, 0.0))).unwrap();
     run_to_rest(&mut sim, 1e-10, 2000, 1_000_000);
-    let twist = sim.model.particles.ori[tip as usize].scaled_axis().x;
+    let twist = sim.model().particles.ori[tip as usize].scaled_axis().x;
     let g = E / (2.0 * (1.0 + NU));
     let expected = t * L / (g * PI * R.powi(4) / 2.0);
     assert!((twist / expected - 1.0).abs() < 1e-6, "{twist} vs {expected}");
@@ -104,18 +104,21 @@ fn cantilever_first_frequency() {
         let x = L * k as Real / n as Real;
         let w = p * x * x * (3.0 * L - x) / (6.0 * e * i);
         let slope = p * x * (2.0 * L - x) / (2.0 * e * i);
-        sim.model.particles.pos[k].z = -w;
-        sim.model.particles.ori[k] = UnitQuaternion::from_scaled_axis(Vec3::new(0.0, slope, 0.0));
+        let mut pos = sim.model().particles.pos[k];
+        pos.z = -w;
+        sim.set_position(k as u32, pos).unwrap();
+        let ori = UnitQuaternion::from_scaled_axis(Vec3::new(0.0, slope, 0.0));
+        sim.set_orientation(k as u32, ori).unwrap();
     }
     let expected =
         1.8751_f64.powi(2) / (2.0 * PI) * (e * i / (rho * PI * r * r * L.powi(4))).sqrt();
     assert!((expected - 14.47).abs() < 0.01);
     // upward zero crossings of the tip's z, interpolated
     let mut crossings = Vec::new();
-    let mut prev = sim.model.particles.pos[tip as usize].z;
+    let mut prev = sim.model().particles.pos[tip as usize].z;
     while crossings.len() < 6 && sim.time() < 1.0 {
         sim.step().unwrap();
-        let z = sim.model.particles.pos[tip as usize].z;
+        let z = sim.model().particles.pos[tip as usize].z;
         if prev < 0.0 && z >= 0.0 {
             let f = prev / (prev - z);
             crossings.push(sim.time() - sim.dt() * (1.0 - f));
@@ -134,6 +137,6 @@ fn cantilever_first_frequency() {
 #[test]
 fn p_wave_step_matches_yade() {
     let (sim, _) = cantilever(10, L, R, E, NU, RHO, LinkKinematicsMode::Yade, 0.3);
-    let dt = flexdem::integrate::p_wave_time_step(&sim.model).unwrap();
+    let dt = flexdem::integrate::p_wave_time_step(sim.model()).unwrap();
     assert!((dt / 6.123724356957945e-5 - 1.0).abs() < 1e-12, "{dt}");
 }

@@ -42,7 +42,7 @@ pub fn tip_load(particle: u32, force: Vec3, torque: Vec3) -> Load {
 
 /// Largest particle speed.
 pub fn max_speed(sim: &Simulation) -> Real {
-    sim.model.particles.vel.iter().map(|v| v.norm()).fold(0.0, Real::max)
+    sim.model().particles.vel.iter().map(|v| v.norm()).fold(0.0, Real::max)
 }
 
 /// Runs until the largest speed (and angular speed times `r`) stays below `tol` for a whole

@@ -195,9 +195,9 @@ pub fn run_case(
     Ok(BenchResult {
         scene,
         size,
-        particles: sim.model.particles.len(),
-        connections: sim.model.connections.len(),
-        pfacets: sim.model.pfacets.len(),
+        particles: sim.model().particles.len(),
+        connections: sim.model().connections.len(),
+        pfacets: sim.model().pfacets.len(),
         threads,
         warmup_steps: warmup,
         steps,
@@ -209,12 +209,14 @@ pub fn run_case(
             collision: after.collision.saturating_sub(before.collision),
             contacts: after.contacts.saturating_sub(before.contacts),
             links: after.links.saturating_sub(before.links),
+            loads: after.loads.saturating_sub(before.loads),
             integration: after.integration.saturating_sub(before.integration),
+            bookkeeping: after.bookkeeping.saturating_sub(before.bookkeeping),
         },
-        contacts: sim.contacts.list.len(),
+        contacts: sim.contacts().len(),
         memory_bytes,
         probe: scene.probe(&sim),
-        checksum: state_checksum(&sim.model, sim.contacts.list.len()),
+        checksum: state_checksum(sim.model(), sim.contacts().len()),
     })
 }
 

@@ -135,7 +135,7 @@ impl SceneKind {
     /// for the tube impact (the last particle), None for the others.
     pub fn probe(self, sim: &Simulation) -> Option<(&'static str, Real)> {
         match self {
-            SceneKind::TubeImpact => sim.model.particles.vel.last().map(|v| ("impactor_vz", v.z)),
+            SceneKind::TubeImpact => sim.model().particles.vel.last().map(|v| ("impactor_vz", v.z)),
             SceneKind::Membrane | SceneKind::Packing => None,
         }
     }

@@ -40,7 +40,7 @@ fn membrane_counts_and_spheres_touch_it_all_along() {
     // The spheres bounce on the membrane held by its edges and posts: contacts all along.
     for _ in 0..20 {
         sim.run(25).unwrap();
-        let c = sim.contacts.list.len();
+        let c = sim.contacts().len();
         assert!(c > spheres / 4 && c <= 2 * spheres, "{c} contacts for {spheres} spheres");
     }
     assert_eq!(membrane_cells(1_000_000), 707);
@@ -59,7 +59,7 @@ fn packing_counts_and_walls() {
     let mut sim = Simulation::new(model, settings).unwrap();
     for steps in [1, 50, 200] {
         sim.run(steps).unwrap();
-        let c = sim.contacts.list.len();
+        let c = sim.contacts().len();
         assert!((900..=1500).contains(&c), "{c} contacts after {} steps", sim.steps());
     }
 }
@@ -102,7 +102,7 @@ fn tube_impact_slows_the_sphere_down() {
     let mut touched = 0;
     for _ in 0..15 {
         sim.run(50).unwrap();
-        touched += usize::from(!sim.contacts.list.is_empty());
+        touched += usize::from(!sim.contacts().is_empty());
         // The fixed step stays well below the critical step through the impact (the
         // scene's automatic step falls later, after 0.15 s).
         sim.update_time_step().unwrap();
@@ -110,7 +110,7 @@ fn tube_impact_slows_the_sphere_down() {
         assert_eq!(sim.dt(), TUBE_IMPACT_DT);
     }
     assert!(sim.warnings().is_empty(), "{:?}", sim.warnings());
-    let vz = sim.model.particles.vel[336].z;
+    let vz = sim.model().particles.vel[336].z;
     assert_eq!(SceneKind::TubeImpact.probe(&sim), Some(("impactor_vz", vz)));
     assert!(vz > -1.8 && vz < 0.0, "impactor velocity {vz} m/s after 750 steps (from -2)");
     assert!(touched >= 10, "contacts at {touched} of 15 checks");

@@ -57,11 +57,13 @@ pub fn text(summary: &Summary) -> String {
     let pct = |x: f64| 100.0 * x / wall;
     let _ = writeln!(
         s,
-        "stages: collision {:.1} %, contacts {:.1} %, links {:.1} %, integration {:.1} %, other (output, checkpoints) {:.1} %",
+        "stages: collision {:.1} %, contacts {:.1} %, links {:.1} %, loads {:.1} %, integration {:.1} %, bookkeeping {:.1} %, other (output, checkpoints) {:.1} %",
         pct(st.collision),
         pct(st.contacts),
         pct(st.links),
+        pct(st.loads),
         pct(st.integration),
+        pct(st.bookkeeping),
         pct(st.other)
     );
     let c = &summary.counts;

@@ -103,7 +103,9 @@ fn every_example_runs_a_few_steps_and_writes_its_output_and_summary() {
         for key in ["/time", "/dt", "/critical_dt", "/wall_time", "/steps_per_second"] {
             assert!(at(&json, key).as_f64().is_some_and(|x| x > 0.0), "{name} {key}");
         }
-        for stage in ["collision", "contacts", "links", "integration", "other"] {
+        for stage in
+            ["collision", "contacts", "links", "loads", "integration", "bookkeeping", "other"]
+        {
             assert!(at(&json, &format!("/stages/{stage}")).is_f64(), "{name} {stage}");
         }
         for count in ["particles", "spheres", "nodes", "connections", "pfacets", "walls"] {

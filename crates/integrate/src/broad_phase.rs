@@ -14,7 +14,7 @@ use rayon::prelude::*;
 /// A box may cover at most this many cells per axis before it is treated as large.
 const MAX_CELLS_PER_AXIS: i64 = 4;
 
-/// Reusable buffers for [`overlapping_pairs`].
+/// Reusable buffers for [`BroadPhase::overlapping_pairs`].
 #[derive(Clone, Debug, Default)]
 pub struct BroadPhase {
     entries: Vec<(u64, u32)>,

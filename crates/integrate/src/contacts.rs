@@ -51,13 +51,13 @@ impl Contact {
 }
 
 /// What the contacts made at one detection added to or took from the energy balance (see
-/// [`Contacts::settle_births`]).
+/// [`ContactPipeline::settle_births`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct BirthReport {
+pub(crate) struct BirthReport {
     /// First touches found with more overlap than one step of approach explains.
     pub born_deep: u64,
     /// Energy put in by contacts that started or ended within the step before (J): see
-    /// [`Contacts::settle_births`]; positive for contacts found late.
+    /// [`ContactPipeline::settle_births`]; positive for contacts found late.
     pub born_energy: Real,
     /// Elastic energy given up by contacts that ended while holding it (J).
     pub released: Real,
@@ -71,34 +71,36 @@ struct Touching {
     owners: (u64, u64),
 }
 
-/// All contacts and the buffers of their pipeline.
-#[derive(Clone, Debug, Default, Serialize, Deserialize)]
+/// The contacts with their history: the part of the simulation state a checkpoint keeps
+/// (the buffers that find and update them are `ContactPipeline`'s).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct Contacts {
     /// Current contacts, sorted by key.
     pub list: Vec<Contact>,
     /// Friction dissipated by contacts that have ended (J).
     pub ended_dissipation: Real,
+    /// Contacts found late (first touches with an overlap one step of approach does not
+    /// explain) so far.
+    pub born_deep: u64,
+}
+
+/// The buffers and caches that find and update the contacts, rebuilt from the model: nothing
+/// here is saved.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct ContactPipeline {
     /// Indices in `list` of the contacts made at the last detection (new keys).
-    #[serde(skip)]
-    pub fresh: Vec<usize>,
-    #[serde(skip)]
+    pub(crate) fresh: Vec<usize>,
     candidates: Vec<Option<ElementCandidate>>,
-    #[serde(skip)]
     touching: Vec<ElementCandidate>,
-    #[serde(skip)]
     loads: Vec<[NodeLoad; 6]>,
     /// Buffers reused from step to step, so that detection does not allocate once warm.
-    #[serde(skip)]
     scratch: Scratch,
-    #[serde(skip)]
     connection_nodes: Vec<[u32; 2]>,
-    #[serde(skip)]
     pfacet_nodes: Vec<[u32; 3]>,
-    #[serde(skip)]
     pfacet_connections: Vec<[u32; 3]>,
 }
 
-/// Buffers of [`Contacts::detect`].
+/// Buffers of [`ContactPipeline::detect`].
 #[derive(Clone, Debug, Default)]
 struct Scratch {
     order: Vec<(Feature, Feature, u32)>,
@@ -137,7 +139,7 @@ fn material(model: &Model, e: Element) -> u32 {
 }
 
 /// What a contact entering the balance at this step moves it by (see
-/// [`Contacts::settle_births`]): `½·kn·δ·δ₋`, `δ` its overlap (less its offset) with geometry
+/// [`ContactPipeline::settle_births`]): `½·kn·δ·δ₋`, `δ` its overlap (less its offset) with geometry
 /// `g`, `δ₋ = δ − u·dt` the overlap one step before from its approach speed `u` over the step
 /// `dt` just done.
 fn birth_jump(c: &Contact, g: &ContactGeometry, dt: Real) -> Real {
@@ -300,10 +302,10 @@ fn containing(collider: &Collider, adj: &Adjacency, feature: Feature, out: &mut 
     }
 }
 
-impl Contacts {
-    /// Empty contacts for `model`.
-    pub fn new(model: &Model) -> Self {
-        Contacts {
+impl ContactPipeline {
+    /// Empty buffers for the contacts of `model`.
+    pub(crate) fn new(model: &Model) -> Self {
+        ContactPipeline {
             connection_nodes: model.connections.iter().map(|c| c.nodes).collect(),
             pfacet_nodes: model.pfacets.iter().map(|f| f.nodes).collect(),
             pfacet_connections: model.pfacets.iter().map(|f| f.connections).collect(),
@@ -314,10 +316,11 @@ impl Contacts {
     /// Finds this step's touchings among the collider's candidate pairs, applies the
     /// one-contact-per-touching rule, and matches them with the last step's contacts (keeping
     /// their state, or handing it over to the feature a touching moved to, see
-    /// [`Contacts::settle_births`]). `dt` is the step about to be taken (to tell a contact
+    /// [`ContactPipeline::settle_births`]). `dt` is the step about to be taken (to tell a contact
     /// found late from one found on time).
-    pub fn detect(
+    pub(crate) fn detect(
         &mut self,
+        contacts: &mut Contacts,
         model: &Model,
         adj: &Adjacency,
         collider: &Collider,
@@ -436,8 +439,8 @@ impl Contacts {
         order.par_sort_unstable();
 
         // 3. match with the last step's contacts (both sorted by key)
-        std::mem::swap(&mut self.list, &mut scratch.previous);
-        self.list.clear();
+        std::mem::swap(&mut contacts.list, &mut scratch.previous);
+        contacts.list.clear();
         let old = &scratch.previous;
         let taken = &mut scratch.taken;
         taken.clear();
@@ -461,10 +464,10 @@ impl Contacts {
                 fresh.push(n);
                 new_contact(model, t)
             };
-            self.list.push(c);
+            contacts.list.push(c);
         }
         self.fresh = fresh;
-        self.settle_births(model, dt)
+        self.settle_births(contacts, model, dt)
     }
 
     /// What the contacts made at this detection inherit, so that no energy comes from a
@@ -498,7 +501,7 @@ impl Contacts {
     /// the one-contact rule with no successor) gives up `½·F·δ_now`, and every ended contact
     /// its shear spring's `½|Fs|²/ks` (`released`). A hand-over counts the ended contact's
     /// exit and the new one's entry, which cancel to first order.
-    fn settle_births(&mut self, model: &Model, dt: Real) -> BirthReport {
+    fn settle_births(&mut self, contacts: &mut Contacts, model: &Model, dt: Real) -> BirthReport {
         let p = &model.particles;
         let k = Kinematics { pos: &p.pos, vel: &p.vel, ang_vel: &p.ang_vel };
         let scratch = &mut self.scratch;
@@ -514,7 +517,7 @@ impl Contacts {
         let by_owners = &mut scratch.by_owners;
         by_owners.clear();
         for &n in &self.fresh {
-            let c = &self.list[n];
+            let c = &contacts.list[n];
             // the closest features of two elements may jump across an element in one step
             // (nearly parallel edges or faces): a touching is looked for within the elements'
             // extent
@@ -544,7 +547,7 @@ impl Contacts {
                 // the ended contact's spring leaves the balance as if it had ended ...
                 report.born_energy -= 0.5 * before.state.normal_force * carried;
                 let force = before.params.kn * carried.max(0.0);
-                let c = &mut self.list[n];
+                let c = &mut contacts.list[n];
                 let normal = c.state.normal;
                 c.state = before.state.clone();
                 c.state.overlap_offset = 0.0;
@@ -589,7 +592,7 @@ impl Contacts {
             }
             if near(by_owners, None).is_some() {
                 // a split: made with no force, on its own normal
-                self.list[n].state.overlap_offset = g.overlap.max(0.0);
+                contacts.list[n].state.overlap_offset = g.overlap.max(0.0);
                 continue;
             }
             report.born_energy += birth_jump(c, &g, dt);
@@ -600,7 +603,7 @@ impl Contacts {
                 continue;
             }
             let c = &old[o];
-            self.ended_dissipation += c.state.dissipated.total();
+            contacts.ended_dissipation += c.state.dissipated.total();
             let (_, _, g) = geometry(model, &k, c);
             let now = g.overlap - c.state.overlap_offset;
             // the spring leaves the balance: −½·F·δ_now (see above); ended by separating
@@ -620,14 +623,21 @@ impl Contacts {
 
     /// Updates every contact's forces (in parallel) and adds the node loads to `force` and
     /// `torque` in contact order.
-    pub fn apply(&mut self, model: &Model, dt: Real, force: &mut [Vec3], torque: &mut [Vec3]) {
+    pub(crate) fn apply(
+        &mut self,
+        contacts: &mut Contacts,
+        model: &Model,
+        dt: Real,
+        force: &mut [Vec3],
+        torque: &mut [Vec3],
+    ) {
         let p = &model.particles;
         let k = Kinematics { pos: &p.pos, vel: &p.vel, ang_vel: &p.ang_vel };
         self.loads.resize(
-            self.list.len(),
+            contacts.list.len(),
             [NodeLoad { node: 0, force: Vec3::zeros(), torque: Vec3::zeros() }; 6],
         );
-        self.list.par_iter_mut().zip(self.loads.par_iter_mut()).for_each(|(c, loads)| {
+        contacts.list.par_iter_mut().zip(self.loads.par_iter_mut()).for_each(|(c, loads)| {
             let (vs1, vs2, g) = geometry(model, &k, c);
             let f = update_frictional_contact(
                 &c.params,
@@ -647,7 +657,7 @@ impl Contacts {
             c.forces = f;
             c.point = g.point;
         });
-        for (c, loads) in self.list.iter().zip(&self.loads) {
+        for (c, loads) in contacts.list.iter().zip(&self.loads) {
             let n1 = c.site1.node_count();
             let n2 = c.site2.node_count();
             for l in loads[..n1].iter().chain(&loads[3..3 + n2]) {
@@ -656,7 +666,9 @@ impl Contacts {
             }
         }
     }
+}
 
+impl Contacts {
     /// Elastic energy stored in the contacts at the last update.
     pub fn elastic_energy(&self) -> Real {
         self.list.iter().map(|c| c.forces.elastic_energy).sum()

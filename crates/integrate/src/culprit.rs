@@ -2,7 +2,7 @@
 //! watch: the contact and the link holding the most elastic energy, and the fastest particle,
 //! each with its bodies and their structures.
 
-use crate::simulation::Simulation;
+use crate::state::State;
 use flexdem_elements::virtual_sphere::Feature;
 use flexdem_elements::Model;
 use flexdem_elements::NO_STRUCTURE;
@@ -40,10 +40,10 @@ fn feature(model: &Model, f: Feature) -> String {
 }
 
 /// The contact and the link holding the most elastic energy and the fastest particle.
-pub(crate) fn describe(sim: &Simulation) -> String {
-    let model = &sim.model;
+pub(crate) fn describe(state: &State) -> String {
+    let model = &state.model;
     let mut parts = Vec::new();
-    let contact = sim
+    let contact = state
         .contacts
         .list
         .iter()
@@ -54,7 +54,7 @@ pub(crate) fn describe(sim: &Simulation) -> String {
              of {} contacts) is between {} and {} at ({:.4}, {:.4}, {:.4})",
             c.forces.elastic_energy,
             c.forces.normal_force,
-            sim.contacts.list.len(),
+            state.contacts.list.len(),
             feature(model, c.site1.feature),
             feature(model, c.site2.feature),
             c.point.x,
@@ -63,17 +63,17 @@ pub(crate) fn describe(sim: &Simulation) -> String {
         )),
         _ => parts.push("No contact holds elastic energy".into()),
     }
-    let link = (0..sim.links.forces.len())
+    let link = (0..state.links.forces.len())
         .max_by(|&a, &b| {
-            sim.links.forces[a].elastic_energy.total_cmp(&sim.links.forces[b].elastic_energy)
+            state.links.forces[a].elastic_energy.total_cmp(&state.links.forces[b].elastic_energy)
         })
-        .filter(|&l| sim.links.forces[l].elastic_energy > 0.0);
+        .filter(|&l| state.links.forces[l].elastic_energy > 0.0);
     if let Some(l) = link {
-        let [a, b] = sim.links.nodes[l];
+        let [a, b] = state.links.nodes[l];
         parts.push(format!(
             "the link holding the most ({:.3e} J) is connection {l} of {}, between nodes {a} \
              and {b}",
-            sim.links.forces[l].elastic_energy,
+            state.links.forces[l].elastic_energy,
             structure_name(model, model.connections[l].structure)
         ));
     }

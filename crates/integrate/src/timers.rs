@@ -1,5 +1,5 @@
-//! Per-stage wall-clock timers (collision, contacts, links, integration), as rapier's
-//! counters: a run reports where its time goes.
+//! Per-stage wall-clock timers (collision, contacts, links, loads, integration, bookkeeping),
+//! as rapier's counters: a run reports where its time goes.
 
 use std::time::{Duration, Instant};
 
@@ -12,8 +12,12 @@ pub enum Stage {
     Contacts,
     /// Beam links.
     Links,
+    /// Imposed loads and the user's force hook.
+    Loads,
     /// Leapfrog integration.
     Integration,
+    /// Checks (NaN, a particle jumping), energy terms and watch, time step.
+    Bookkeeping,
 }
 
 /// Accumulated time per stage.
@@ -25,8 +29,12 @@ pub struct Timers {
     pub contacts: Duration,
     /// Links.
     pub links: Duration,
+    /// Imposed loads and the force hook.
+    pub loads: Duration,
     /// Integration.
     pub integration: Duration,
+    /// Checks, energy, time step.
+    pub bookkeeping: Duration,
 }
 
 impl Timers {
@@ -42,12 +50,19 @@ impl Timers {
             Stage::Collision => self.collision += d,
             Stage::Contacts => self.contacts += d,
             Stage::Links => self.links += d,
+            Stage::Loads => self.loads += d,
             Stage::Integration => self.integration += d,
+            Stage::Bookkeeping => self.bookkeeping += d,
         }
     }
 
     /// Sum over the stages.
     pub fn total(&self) -> Duration {
-        self.collision + self.contacts + self.links + self.integration
+        self.collision
+            + self.contacts
+            + self.links
+            + self.loads
+            + self.integration
+            + self.bookkeeping
     }
 }

@@ -29,7 +29,7 @@ fn output_settings(dir: &Path) -> OutputSettings {
 
 fn checkpoint_of(sim: &Simulation) -> Checkpoint {
     Checkpoint {
-        snapshot: sim.snapshot(),
+        state: sim.state().clone(),
         run: RunLength::Duration(1.5),
         threads: Some(3),
         output: output_settings(Path::new("out/run")),
@@ -54,7 +54,7 @@ fn small_simulation() -> Simulation {
     let settings = Settings { gravity: Vec3::new(0.0, 0.0, -9.81), ..Settings::default() };
     let mut sim = Simulation::new(model, settings).unwrap();
     sim.run(20).unwrap();
-    assert!(!sim.contacts.list.is_empty());
+    assert!(!sim.contacts().is_empty());
     sim
 }
 
@@ -107,15 +107,15 @@ fn assert_same_state(a: &Simulation, b: &Simulation) {
     assert_eq!(a.steps(), b.steps());
     assert_eq!(a.time().to_bits(), b.time().to_bits());
     assert_eq!(a.dt().to_bits(), b.dt().to_bits());
-    let (pa, pb) = (&a.model.particles, &b.model.particles);
+    let (pa, pb) = (&a.model().particles, &b.model().particles);
     assert!(pa.pos == pb.pos, "positions differ");
     assert!(pa.vel == pb.vel, "velocities differ");
     assert!(pa.ori == pb.ori, "orientations differ");
     assert!(pa.ang_vel == pb.ang_vel, "angular velocities differ");
     assert_eq!(a.energy(), b.energy());
-    assert_eq!(a.contacts.list.len(), b.contacts.list.len());
+    assert_eq!(a.contacts().len(), b.contacts().len());
     // The whole state, bit for bit: contact and link history included.
-    assert!(encoded(&a.snapshot()) == encoded(&b.snapshot()), "snapshots differ");
+    assert!(encoded(a.state()) == encoded(b.state()), "states differ");
 }
 
 /// The net_drop example with the rock released just above the net, so that it touches it
@@ -137,7 +137,7 @@ fn count_touching_steps(sim: &mut Simulation, n: u64) -> u64 {
     (0..n)
         .filter(|_| {
             sim.step().unwrap();
-            !sim.contacts.list.is_empty()
+            !sim.contacts().is_empty()
         })
         .count() as u64
 }
@@ -149,13 +149,13 @@ fn a_run_restarted_from_a_checkpoint_file_continues_bit_identically() {
     // contact history behind it.
     a.run(1000).unwrap();
     let mut steps = 0;
-    while a.contacts.list.is_empty() {
+    while a.contacts().is_empty() {
         assert!(steps < 5000, "the rock never touched the net");
         a.step().unwrap();
         steps += 1;
     }
     a.step().unwrap();
-    assert!(!a.contacts.list.is_empty() && !a.links.is_empty());
+    assert!(!a.contacts().is_empty() && !a.links().is_empty());
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("net.ckp");
     let original = checkpoint_of(&a);
@@ -312,7 +312,10 @@ fn foreign_and_odd_files_give_their_error() {
     let empty = read_bytes(b"");
     assert!(matches!(empty, Err(CheckpointError::TooShort { len: 0, .. })), "{empty:?}");
 
-    for (version, word) in [(CHECKPOINT_VERSION + 1, "newer"), (0, "older")] {
+    // 2: the format of the engine's former `Snapshot`, before the `State` of version 3
+    let older = [(CHECKPOINT_VERSION + 1, "newer"), (0, "older"), (2, "older")];
+    assert_eq!(CHECKPOINT_VERSION, 3);
+    for (version, word) in older {
         let mut bytes = valid.to_vec();
         bytes[8..12].copy_from_slice(&version.to_le_bytes());
         let err = read_bytes(&bytes).map(|_| ()).unwrap_err();
@@ -368,7 +371,7 @@ fn a_state_the_engine_refuses_is_reported_with_the_file() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("refused.ckp");
     let mut c = checkpoint_of(&small_simulation());
-    c.snapshot.dt = -1.0;
+    c.state.clock.dt = -1.0;
     write_checkpoint(&path, &c).unwrap();
     let c = read_checkpoint(&path).unwrap();
     let err = c.clone().into_simulation().map(|_| ()).unwrap_err();
@@ -411,16 +414,16 @@ proptest! {
 #[test]
 fn damaged_contacts_and_counters_are_refused() {
     let mut sim = small_simulation();
-    while sim.snapshot().contacts.is_empty() {
+    while sim.contacts().is_empty() {
         sim.run(1).unwrap();
     }
     let damages: [fn(&mut Checkpoint); 6] = [
-        |c| c.snapshot.contacts[0].site2.weights[0] = f64::NAN,
-        |c| c.snapshot.contacts[0].state.overlap_offset = -1.0,
-        |c| c.snapshot.contacts[0].site2.weights = [0.7, 0.7, 0.7],
-        |c| c.snapshot.contacts[0].state.normal *= 2.0,
-        |c| c.snapshot.contacts[0].params.kn = f64::INFINITY,
-        |c| c.snapshot.dt_updated_at = c.snapshot.steps + 5,
+        |c| c.state.contacts.list[0].site2.weights[0] = f64::NAN,
+        |c| c.state.contacts.list[0].state.overlap_offset = -1.0,
+        |c| c.state.contacts.list[0].site2.weights = [0.7, 0.7, 0.7],
+        |c| c.state.contacts.list[0].state.normal *= 2.0,
+        |c| c.state.contacts.list[0].params.kn = f64::INFINITY,
+        |c| c.state.clock.dt_updated_at = c.state.clock.steps + 5,
     ];
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("damaged.ckp");

@@ -521,16 +521,16 @@ fn corpus(scratch: PathBuf) -> Corpus {
     }
     for _ in 0..2000 {
         sim.run(1).unwrap();
-        if !sim.snapshot().contacts.is_empty() {
+        if !sim.contacts().is_empty() {
             break;
         }
     }
     // a few steps into the contacts (an engine check stopping the run leaves a state to save)
     let _ = sim.run(5);
-    assert!(!sim.snapshot().contacts.is_empty(), "the checkpoint seed should hold contacts");
+    assert!(!sim.contacts().is_empty(), "the checkpoint seed should hold contacts");
     let path = scratch.join("seed.flexdem");
     let checkpoint = Checkpoint {
-        snapshot: sim.snapshot(),
+        state: sim.state().clone(),
         run: scene.run,
         threads: Some(1),
         output: scene.output,

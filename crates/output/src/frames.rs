@@ -32,7 +32,7 @@ fn id32(id: u32) -> i32 {
 /// `angular_velocity`, `force` (total force at the last step), `kind` (0 sphere, 1 node),
 /// `structure` (−1 for free spheres), `material`.
 pub fn particles_polydata(sim: &Simulation) -> PolyData {
-    let p = &sim.model.particles;
+    let p = &sim.model().particles;
     let n = p.pos.len();
     let forces = sim.forces();
     let force = (0..n).map(|i| forces.get(i).map_or([0.0; 3], xyz));
@@ -66,7 +66,7 @@ fn compact_points(
     sim: &Simulation,
     cells: impl Iterator<Item = u32>,
 ) -> (Vec<[f64; 3]>, Vec<i32>, Vec<i64>) {
-    let pos = &sim.model.particles.pos;
+    let pos = &sim.model().particles.pos;
     let mut local = vec![u32::MAX; pos.len()];
     let (mut points, mut ids, mut connectivity) = (Vec::new(), Vec::new(), Vec::new());
     for particle in cells {
@@ -92,9 +92,9 @@ fn compact_points(
 /// `shear_force`, `broken` (0/1), `status` (0 cohesive, 1 frictional, 2 broken), `structure`,
 /// `material`.
 pub fn connections_polydata(sim: &Simulation) -> PolyData {
-    let connections = &sim.model.connections;
+    let connections = &sim.model().connections;
     let (points, ids, connectivity) = compact_points(sim, connections.iter().flat_map(|c| c.nodes));
-    let links = &sim.links;
+    let links = sim.links();
     let status: Vec<i32> = (0..connections.len())
         .map(|i| match links.state.get(i).map(|s| s.status) {
             Some(LinkStatus::Cohesive) | None => 0,
@@ -133,7 +133,7 @@ pub fn connections_polydata(sim: &Simulation) -> PolyData {
 /// PFacets as triangles over their nodes; point data `id` (particle id); cell data `radius`,
 /// `structure`, `material`.
 pub fn pfacets_polydata(sim: &Simulation) -> PolyData {
-    let pfacets = &sim.model.pfacets;
+    let pfacets = &sim.model().pfacets;
     let (points, ids, connectivity) = compact_points(sim, pfacets.iter().flat_map(|f| f.nodes));
     PolyData {
         points,
@@ -155,7 +155,7 @@ pub fn pfacets_polydata(sim: &Simulation) -> PolyData {
 /// The centre of a contact site: Σ weights·positions of its nodes, or `point` (the contact
 /// point) for a wall site, which has no nodes.
 pub fn site_centre(sim: &Simulation, site: &Site, point: &Vec3) -> Vec3 {
-    let pos = &sim.model.particles.pos;
+    let pos = &sim.model().particles.pos;
     let count = site.node_count();
     if count == 0 {
         return *point;
@@ -180,7 +180,7 @@ fn feature_kind(site: &Site) -> i32 {
 /// `shear_force`, `point` (contact point), `kind1`, `kind2` (0 particle, 1 edge, 2 face,
 /// 3 wall).
 pub fn contacts_polydata(sim: &Simulation) -> PolyData {
-    let list = &sim.contacts.list;
+    let list = sim.contacts();
     let mut points = Vec::with_capacity(2 * list.len());
     for c in list {
         points.push(xyz(&site_centre(sim, &c.site1, &c.point)));

@@ -110,7 +110,7 @@ pub fn header_columns(series: &[SeriesSpec]) -> Vec<String> {
 /// Checks a series list against a simulation: names valid and distinct, particle ids in range,
 /// selections not empty.
 pub fn validate_series(series: &[SeriesSpec], sim: &Simulation) -> Result<(), OutputError> {
-    let count = sim.model.particles.pos.len();
+    let count = sim.model().particles.pos.len();
     for (i, spec) in series.iter().enumerate() {
         let name_ok = !spec.name.is_empty()
             && spec.name.chars().all(|c| c.is_ascii_alphanumeric() || "_-.".contains(c));
@@ -165,7 +165,7 @@ fn particle_value(values: &[Vec3], id: u32) -> Vec3 {
 /// The values of one series at the simulation's current state, in the order of
 /// [`series_columns`].
 pub fn series_values(spec: &SeriesSpec, sim: &Simulation, row: &mut Vec<Real>) {
-    let p = &sim.model.particles;
+    let p = &sim.model().particles;
     match &spec.quantity {
         Quantity::Position(id) => push_vec3(row, particle_value(&p.pos, *id)),
         Quantity::Velocity(id) => push_vec3(row, particle_value(&p.vel, *id)),
@@ -176,10 +176,10 @@ pub fn series_values(spec: &SeriesSpec, sim: &Simulation, row: &mut Vec<Real>) {
             let total = ids.iter().fold(Vec3::zeros(), |sum, &i| sum + particle_value(forces, i));
             push_vec3(row, total);
         }
-        Quantity::ContactCount => row.push(sim.contacts.list.len() as Real),
+        Quantity::ContactCount => row.push(sim.contacts().len() as Real),
         Quantity::BrokenLinks => {
             let broken = sim
-                .links
+                .links()
                 .state
                 .iter()
                 .filter(|s| s.status == flexdem_contact::LinkStatus::Broken)

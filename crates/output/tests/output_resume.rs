@@ -69,12 +69,12 @@ fn a_resumed_output_matches_an_uninterrupted_one() {
     assert_eq!(progress.vtk_frames.iter().map(|f| f.0).collect::<Vec<_>>(), vec![0, 3, 6]);
     assert_eq!(progress.vtk_frames[2].1, out.rows()[3][0]);
     assert_eq!(progress.series_rows, 4); // steps 0, 2, 4, 6
-    let snapshot = sim.snapshot();
+    let saved = sim.state().clone();
     // the first run goes on past the checkpoint and stops off the schedule
     advance(&mut sim, &mut out, 9);
     out.finish(&sim).unwrap();
 
-    let mut sim = Simulation::from_snapshot(snapshot).unwrap();
+    let mut sim = Simulation::from_state(saved).unwrap();
     let mut out = Output::resume(&settings(&b), &sim, &progress).unwrap();
     assert_eq!(out.rows().len(), 4);
     advance(&mut sim, &mut out, 10);

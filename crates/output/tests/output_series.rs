@@ -48,7 +48,7 @@ fn settings(dir: &Path) -> OutputSettings {
 
 /// The values the CSV should hold for `sim` now, computed here from the simulation.
 fn expected_row(sim: &Simulation) -> Vec<Real> {
-    let p = &sim.model.particles;
+    let p = &sim.model().particles;
     let e = sim.energy();
     let f: Vec3 = [2, 3, 4].iter().map(|&i| sim.forces()[i]).sum();
     let mut row = vec![sim.time(), sim.steps() as Real];
@@ -67,7 +67,7 @@ fn expected_row(sim: &Simulation) -> Vec<Real> {
         e.friction,
         e.balance(),
     ]);
-    row.extend_from_slice(&[f.x, f.y, f.z, sim.contacts.list.len() as Real, 0.0]);
+    row.extend_from_slice(&[f.x, f.y, f.z, sim.contacts().len() as Real, 0.0]);
     row
 }
 
@@ -114,7 +114,7 @@ fn csv_rows_hold_the_simulation_values_and_the_plot_is_a_png() {
     expected.push(expected_row(&sim));
     assert_eq!(report.series_rows, 5);
     assert_eq!(report.files, vec![dir.path().join("series.csv"), dir.path().join("series.png")]);
-    assert!(sim.contacts.list.len() == 1, "the sphere rests on the wall");
+    assert!(sim.contacts().len() == 1, "the sphere rests on the wall");
 
     let text = std::fs::read_to_string(dir.path().join("series.csv")).unwrap();
     let mut lines = text.lines();

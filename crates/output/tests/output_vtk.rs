@@ -46,7 +46,7 @@ struct Snapshot {
 /// The state a frame shows; contacts as (centre 1, centre 2, normal force, force on 2), with
 /// the centres computed here from the sites' weights.
 fn snapshot(sim: &Simulation) -> Snapshot {
-    let pos = sim.model.particles.pos.clone();
+    let pos = sim.model().particles.pos.clone();
     let centre = |site: &flexdem_elements::virtual_sphere::Site, point: Vec3| {
         if site.node_count() == 0 {
             point
@@ -55,8 +55,7 @@ fn snapshot(sim: &Simulation) -> Snapshot {
         }
     };
     let contacts = sim
-        .contacts
-        .list
+        .contacts()
         .iter()
         .map(|c| {
             (
@@ -70,9 +69,9 @@ fn snapshot(sim: &Simulation) -> Snapshot {
     Snapshot {
         time: sim.time(),
         pos: pos.clone(),
-        vel: sim.model.particles.vel.clone(),
+        vel: sim.model().particles.vel.clone(),
         force: sim.forces().to_vec(),
-        axial: sim.links.forces.iter().map(|f| f.normal_force).collect(),
+        axial: sim.links().forces.iter().map(|f| f.normal_force).collect(),
         contacts,
     }
 }
@@ -177,7 +176,7 @@ fn frames_read_back_match_the_simulation_and_the_pvd_lists_them() {
     assert!(last.contacts.len() >= 2, "the scene has contacts: {}", last.contacts.len());
     assert!(last.axial.iter().any(|&f| f != 0.0), "the links carry forces");
 
-    let p = &sim.model.particles;
+    let p = &sim.model().particles;
     for (step, snap) in &snapshots {
         let file = |part: &str| settings.directory.join(format!("{part}_{step:06}.vtp"));
         // particles: every particle as a vertex with its data
@@ -216,8 +215,8 @@ fn frames_read_back_match_the_simulation_and_the_pvd_lists_them() {
         let axial = array(&piece.data.cell, "axial_force");
         let radius = array(&piece.data.cell, "radius");
         let broken = array(&piece.data.cell, "broken");
-        assert_eq!(offsets.len(), sim.model.connections.len());
-        for (c, connection) in sim.model.connections.iter().enumerate() {
+        assert_eq!(offsets.len(), sim.model().connections.len());
+        for (c, connection) in sim.model().connections.iter().enumerate() {
             assert_eq!(offsets[c], 2 * (c as u64 + 1));
             for k in 0..2 {
                 let point = conn[2 * c + k] as usize;
@@ -228,7 +227,7 @@ fn frames_read_back_match_the_simulation_and_the_pvd_lists_them() {
             assert!(close(radius[c], connection.radius));
             assert_eq!(
                 broken[c],
-                f64::from(u8::from(sim.links.state[c].status == LinkStatus::Broken))
+                f64::from(u8::from(sim.links().state[c].status == LinkStatus::Broken))
             );
         }
         // PFacets: one triangle per PFacet over its nodes
@@ -237,8 +236,8 @@ fn frames_read_back_match_the_simulation_and_the_pvd_lists_them() {
         let (conn, offsets) = cells(&piece.polys);
         let ids = array(&piece.data.point, "id");
         let structure = array(&piece.data.cell, "structure");
-        assert_eq!(offsets.len(), sim.model.pfacets.len());
-        for (f, pfacet) in sim.model.pfacets.iter().enumerate() {
+        assert_eq!(offsets.len(), sim.model().pfacets.len());
+        for (f, pfacet) in sim.model().pfacets.iter().enumerate() {
             for k in 0..3 {
                 let point = conn[3 * f + k] as usize;
                 assert_eq!(ids[point] as u32, pfacet.nodes[k]);

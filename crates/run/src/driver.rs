@@ -332,7 +332,7 @@ impl Run {
             .map(Output::progress)
             .unwrap_or(OutputProgress { vtk_frames: Vec::new(), series_rows: 0 });
         let checkpoint = Checkpoint {
-            snapshot: self.sim.snapshot(),
+            state: self.sim.state().clone(),
             run: self.target,
             threads: self.threads,
             output: self.output_settings.clone(),
@@ -399,8 +399,8 @@ impl Run {
             stages: Stages::of(sim, wall),
             counts: Counts::of(sim),
             collider: ColliderSummary {
-                candidate_pairs: sim.collider.pairs.len(),
-                builds: sim.collider.builds,
+                candidate_pairs: sim.collider().pairs.len(),
+                builds: sim.collider().builds,
             },
             energy: EnergySummary::of(sim),
             tracked: tracked_values(&self.output_settings, sim),

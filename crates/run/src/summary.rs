@@ -69,7 +69,7 @@ pub struct Summary {
     pub checkpoint: Option<PathBuf>,
 }
 
-/// Wall-clock time per stage (s); `other` is output, checkpoints and bookkeeping.
+/// Wall-clock time per stage (s); `other` is output, checkpoints and progress.
 #[derive(Clone, Copy, Debug, Serialize)]
 pub struct Stages {
     /// Broad phase.
@@ -78,8 +78,12 @@ pub struct Stages {
     pub contacts: f64,
     /// Beam links.
     pub links: f64,
+    /// Imposed loads and the force hook.
+    pub loads: f64,
     /// Leapfrog integration.
     pub integration: f64,
+    /// Checks, energy terms and watch, time step.
+    pub bookkeeping: f64,
     /// Everything else: output, checkpoints, progress.
     pub other: f64,
 }
@@ -163,19 +167,19 @@ pub struct OutputSummary {
 impl Counts {
     /// The counts of `sim` now.
     pub fn of(sim: &Simulation) -> Counts {
-        let m = &sim.model;
+        let m = &sim.model();
         let spheres = m.particles.kind.iter().filter(|k| **k == ParticleKind::Sphere).count();
         Counts {
             particles: m.particles.len(),
             spheres,
             nodes: m.particles.len() - spheres,
             connections: m.connections.len(),
-            intact_links: sim.links.intact(),
-            broken_links: sim.links.len() - sim.links.intact(),
+            intact_links: sim.links().intact(),
+            broken_links: sim.links().len() - sim.links().intact(),
             pfacets: m.pfacets.len(),
             walls: m.walls.len(),
             structures: m.structures.len(),
-            contacts: sim.contacts.list.len(),
+            contacts: sim.contacts().len(),
         }
     }
 }
@@ -205,7 +209,9 @@ impl Stages {
             collision: t.collision.as_secs_f64(),
             contacts: t.contacts.as_secs_f64(),
             links: t.links.as_secs_f64(),
+            loads: t.loads.as_secs_f64(),
             integration: t.integration.as_secs_f64(),
+            bookkeeping: t.bookkeeping.as_secs_f64(),
             other: wall.saturating_sub(t.total()).as_secs_f64(),
         }
     }

@@ -48,7 +48,7 @@ impl RunObserver for Counter {
 /// The state a run ends in, bit for bit: positions, velocities and energy terms.
 fn final_state(run: &Run) -> Vec<u64> {
     let sim = run.sim();
-    let p = &sim.model.particles;
+    let p = &sim.model().particles;
     let e = sim.energy();
     p.pos
         .iter()

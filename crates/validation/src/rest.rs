@@ -6,7 +6,7 @@ use flexdem_integrate::Simulation;
 
 /// Largest speed of any particle (m/s).
 pub fn max_speed(sim: &Simulation) -> Real {
-    sim.model.particles.vel.iter().map(|v| v.norm()).fold(0.0, Real::max)
+    sim.model().particles.vel.iter().map(|v| v.norm()).fold(0.0, Real::max)
 }
 
 /// Runs `sim` in chunks of `chunk` steps until the largest speed stays below `tol` for a

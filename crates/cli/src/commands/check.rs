@@ -19,7 +19,7 @@ pub fn check(args: &SceneArgs) -> Result<Outcome, CliError> {
         eprintln!("warning: {warning}");
     }
     let c = Counts::of(&sim);
-    let dt_rule = match sim.settings.time_step {
+    let dt_rule = match sim.settings().time_step {
         TimeStep::Auto { safety } => {
             format!("auto, {safety} × critical {:.3e} s", sim.critical_dt())
         }

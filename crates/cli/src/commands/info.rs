@@ -66,7 +66,7 @@ fn steps_of(run: RunLength, sim: &Simulation) -> String {
     match run {
         RunLength::Steps(n) => format!("{n} steps"),
         RunLength::Duration(d) => {
-            let auto = matches!(sim.settings.time_step, TimeStep::Auto { .. });
+            let auto = matches!(sim.settings().time_step, TimeStep::Auto { .. });
             format!(
                 "about {} steps at the initial dt{}",
                 (d / sim.dt()).ceil(),
@@ -80,7 +80,7 @@ fn steps_of(run: RunLength, sim: &Simulation) -> String {
 pub fn info(args: &SceneArgs) -> Result<Outcome, CliError> {
     let scene = read_scene(&args.scene)?;
     let (sim, rest) = build_simulation(scene)?;
-    let m = &sim.model;
+    let m = &sim.model();
     let p = &m.particles;
     let c = Counts::of(&sim);
     println!("scene: {}", args.scene.display());
@@ -113,7 +113,7 @@ pub fn info(args: &SceneArgs) -> Result<Outcome, CliError> {
     for (name, material) in material_names(&args.scene, &m.materials).iter().zip(&m.materials) {
         println!("  {name}: {}", describe_material(material));
     }
-    let rule = match sim.settings.time_step {
+    let rule = match sim.settings().time_step {
         TimeStep::Auto { safety } => {
             format!("auto: {safety} × critical, recomputed as contacts change")
         }
@@ -125,13 +125,13 @@ pub fn info(args: &SceneArgs) -> Result<Outcome, CliError> {
         println!("warning: {warning}");
     }
     println!("run length: {} = {}", describe_run(rest.run), steps_of(rest.run, &sim));
-    let g = sim.settings.gravity;
+    let g = sim.settings().gravity;
     println!(
         "gravity: [{}, {}, {}] m/s²; damping: {}; threads: {}",
         g.x,
         g.y,
         g.z,
-        sim.settings.damping,
+        sim.settings().damping,
         match rest.threads {
             Some(n) => n.to_string(),
             None => format!("machine default ({})", rayon::current_num_threads()),

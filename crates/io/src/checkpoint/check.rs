@@ -1,19 +1,19 @@
-//! Checks of the parts of a snapshot read from a file that the engine's own checks
-//! (`Simulation::from_snapshot`: the model, the settings, the links' topology, ids in range)
+//! Checks of the parts of a state read from a file that the engine's own checks
+//! (`Simulation::from_state`: the model, the settings, the links' topology, ids in range)
 //! leave to the file: the numbers of the contacts and of the loads, the step counters. A damaged checkpoint whose
 //! checksum was recomputed (the mutation fuzzer) can hold NaN weights or a non-unit normal in
 //! a contact, which the contact law assumes away.
 
 use flexdem_elements::virtual_sphere::{Feature, Site};
 use flexdem_geom::{Real, Vec3};
-use flexdem_integrate::{Contact, Load, Ramp, Snapshot};
+use flexdem_integrate::{Contact, Load, Ramp, State};
 
 fn finite(v: &Vec3) -> bool {
     v.iter().all(|x| x.is_finite())
 }
 
 /// What is wrong with site `site` of a contact, if anything.
-fn check_site(s: &Snapshot, site: &Site) -> Result<(), String> {
+fn check_site(s: &State, site: &Site) -> Result<(), String> {
     let model = &s.model;
     let (used, in_range) = match site.feature {
         Feature::Particle(i) => (1, (i as usize) < model.particles.len()),
@@ -44,7 +44,7 @@ fn check_site(s: &Snapshot, site: &Site) -> Result<(), String> {
 }
 
 /// What is wrong with contact `c`, if anything.
-fn check_contact(s: &Snapshot, c: &Contact) -> Result<(), String> {
+fn check_contact(s: &State, c: &Contact) -> Result<(), String> {
     check_site(s, &c.site1)?;
     check_site(s, &c.site2)?;
     let p = &c.params;
@@ -81,14 +81,14 @@ fn check_load(l: &Load) -> Result<(), String> {
 }
 
 /// `Err(what)` when the contacts or loads of `s` hold numbers no run produces.
-pub(crate) fn check_snapshot(s: &Snapshot) -> Result<(), String> {
-    if s.dt_updated_at > s.steps {
+pub(crate) fn check_state(s: &State) -> Result<(), String> {
+    if s.clock.dt_updated_at > s.clock.steps {
         return Err(format!(
             "the time step was estimated at step {}, after the last step {}",
-            s.dt_updated_at, s.steps
+            s.clock.dt_updated_at, s.clock.steps
         ));
     }
-    for (i, c) in s.contacts.iter().enumerate() {
+    for (i, c) in s.contacts.list.iter().enumerate() {
         check_contact(s, c).map_err(|e| format!("contact {i}: {e}"))?;
     }
     for (i, l) in s.loads.iter().enumerate() {

@@ -1,4 +1,4 @@
-//! Checkpoint files: the whole state of a run (the engine's [`Snapshot`], with contacts and
+//! Checkpoint files: the whole state of a run (the engine's [`State`], with contacts and
 //! their shear history, links, clock, time-step bookkeeping and energy terms) together with
 //! what is needed to carry on the run (run length, threads, output settings and how far the
 //! output got), so that a run restarted from a checkpoint continues **bit-identically** to one
@@ -18,8 +18,10 @@
 //! round-trip bit-exactly; a valid state never holds NaN.
 //!
 //! The version changes whenever the payload's layout changes (a field added to
-//! [`Snapshot`] or to [`Checkpoint`], an enum variant moved, ...): a build reads only its own
+//! [`State`] or to [`Checkpoint`], an enum variant moved, ...): a build reads only its own
 //! version and says which version a file has.
+//! Version 3 stores the engine's [`State`] (version 2 stored its predecessor, `Snapshot`,
+//! with the same parts in another order): files of version 2 are refused with that message.
 //!
 //! # Writing
 //!
@@ -39,14 +41,14 @@
 //! of the payload size, so a crafted length inside the payload cannot make it allocate more
 //! (payloads above 1 GiB are decoded without that bound).
 //!
-//! The snapshot itself is checked by the engine when the simulation is rebuilt:
+//! The state itself is checked by the engine when the simulation is rebuilt:
 //! [`Checkpoint::into_simulation`] (or [`restore_checkpoint`], which reads and rebuilds in
 //! one call and names the file in its errors).
 
 mod atomic;
 mod check;
 
-use flexdem_integrate::{Simulation, SimulationError, Snapshot};
+use flexdem_integrate::{Simulation, SimulationError, State};
 /// What the output had written, stored in checkpoints (defined by `flexdem-output`).
 pub use flexdem_output::OutputProgress;
 use flexdem_output::OutputSettings;
@@ -60,7 +62,7 @@ use std::path::{Path, PathBuf};
 pub const CHECKPOINT_MAGIC: [u8; 8] = *b"FLXDMCKP";
 
 /// The format version this build writes and reads (see the module documentation).
-pub const CHECKPOINT_VERSION: u32 = 2;
+pub const CHECKPOINT_VERSION: u32 = 3;
 
 /// Size of the header before the payload: magic, version, length, checksum (bytes).
 pub const CHECKPOINT_HEADER_LEN: usize = 24;
@@ -68,8 +70,8 @@ pub const CHECKPOINT_HEADER_LEN: usize = 24;
 /// Everything a run needs to continue from where it was.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct Checkpoint {
-    /// The simulation's whole state (see [`Simulation::snapshot`]).
-    pub snapshot: Snapshot,
+    /// The simulation's whole state (see [`Simulation::state`]).
+    pub state: State,
     /// The run length of the scene: the resumed run stops where the original would have.
     pub run: RunLength,
     /// Number of worker threads of the run (None: the machine's default).
@@ -99,7 +101,7 @@ pub struct ResumeInfo {
 }
 
 impl Checkpoint {
-    /// Rebuilds the simulation with [`Simulation::from_snapshot`], which checks the snapshot
+    /// Rebuilds the simulation with [`Simulation::from_state`], which checks the state
     /// (a file may have been written by a buggy build or edited): the error is
     /// [`CheckpointError::Refused`] without a file name; [`restore_checkpoint`] adds it.
     pub fn into_simulation(self) -> Result<(Simulation, ResumeInfo), CheckpointError> {
@@ -111,14 +113,14 @@ impl Checkpoint {
             output_progress: self.output_progress,
         };
         let refused = |source| CheckpointError::Refused { path: None, source };
-        check::check_snapshot(&self.snapshot).map_err(|value| {
+        check::check_state(&self.state).map_err(|value| {
             refused(SimulationError::Setting {
-                what: "snapshot".into(),
+                what: "simulation state".into(),
                 value,
-                expected: "a snapshot written by Simulation::snapshot".into(),
+                expected: "a state written by Simulation::state".into(),
             })
         })?;
-        let sim = Simulation::from_snapshot(self.snapshot).map_err(refused)?;
+        let sim = Simulation::from_state(self.state).map_err(refused)?;
         Ok((sim, info))
     }
 }
@@ -248,7 +250,7 @@ pub enum CheckpointError {
         /// The payload length (bytes).
         len: u64,
     },
-    /// The engine refuses the state in the checkpoint (see [`Simulation::from_snapshot`]).
+    /// The engine refuses the state in the checkpoint (see [`Simulation::from_state`]).
     #[error(
         "{}the simulation state is refused by the engine: {source}",
         path.as_ref().map(|p| format!("checkpoint {}: ", p.display())).unwrap_or_default()
@@ -283,7 +285,7 @@ fn encode_header(payload: &[u8]) -> [u8; CHECKPOINT_HEADER_LEN] {
 }
 
 /// Reads and checks the checkpoint at `path` (see the module documentation for the checks).
-/// The snapshot is checked by the engine later, in [`Checkpoint::into_simulation`].
+/// The state is checked by the engine later, in [`Checkpoint::into_simulation`].
 pub fn read_checkpoint(path: &Path) -> Result<Checkpoint, CheckpointError> {
     let read_err = |source| CheckpointError::Read { path: path.to_owned(), source };
     let mut file = File::open(path).map_err(read_err)?;

@@ -91,14 +91,14 @@ fn sphere_on_wall(
         Settings { time_step: TimeStep::Fixed(tc / STEPS_PER_CONTACT), ..Settings::default() };
     let mut sim = Simulation::new(model, settings)?;
     let t_max = 1e-3 * r / v + 5.0 * tc;
-    let interval = contact_interval(&mut sim, |sim| sim.model.particles.pos[s].z - r, t_max)?;
+    let interval = contact_interval(&mut sim, |sim| sim.model().particles.pos[s].z - r, t_max)?;
     let Some((start, end)) = interval else {
         return Err(ValidationError::Case {
             case: "chung_ooi_1".into(),
             message: "no rebound".into(),
         });
     };
-    Ok(NormalImpact { duration: end - start, restitution: sim.model.particles.vel[s].z / v })
+    Ok(NormalImpact { duration: end - start, restitution: sim.model().particles.vel[s].z / v })
 }
 
 /// Test 2: two spheres of radius `r` approach each other along x, each at `v`.
@@ -115,7 +115,7 @@ fn two_spheres(material: NamedMaterial, r: Real, v: Real) -> Result<NormalImpact
         Settings { time_step: TimeStep::Fixed(tc / STEPS_PER_CONTACT), ..Settings::default() };
     let mut sim = Simulation::new(model, settings)?;
     let gap = |sim: &Simulation| {
-        let p = &sim.model.particles.pos;
+        let p = &sim.model().particles.pos;
         (p[b] - p[a]).norm() - 2.0 * r
     };
     let t_max = 1e-3 * r / v + 5.0 * tc;
@@ -125,7 +125,7 @@ fn two_spheres(material: NamedMaterial, r: Real, v: Real) -> Result<NormalImpact
             message: "no rebound".into(),
         });
     };
-    let vel = &sim.model.particles.vel;
+    let vel = &sim.model().particles.vel;
     Ok(NormalImpact { duration: end - start, restitution: (vel[b].x - vel[a].x) / (2.0 * v) })
 }
 
@@ -242,7 +242,7 @@ fn oblique_impact(theta: Real) -> Result<ObliqueImpact, ValidationError> {
     while sim.time() < t_end {
         sim.step()?;
     }
-    let (v, w) = (sim.model.particles.vel[s], sim.model.particles.ang_vel[s]);
+    let (v, w) = (sim.model().particles.vel[s], sim.model().particles.ang_vel[s]);
     Ok(ObliqueImpact { ratio: v.x / vt, spin: w.y, restitution: v.z / vn })
 }
 

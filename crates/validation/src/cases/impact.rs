@@ -158,7 +158,7 @@ fn run_impact(
     let kinetic0 = sim.energy().kinetic_translation + sim.energy().kinetic_rotation;
     let balance0 = sim.energy().balance();
     let sample = |sim: &Simulation| {
-        let p = &sim.model.particles;
+        let p = &sim.model().particles;
         let m = |i: usize| p.mass[i];
         let centre = impactor.iter().map(|&i| p.pos[i] * m(i)).sum::<Vec3>() / impactor_mass;
         let velocity = impactor.iter().map(|&i| p.vel[i] * m(i)).sum::<Vec3>() / impactor_mass;
@@ -634,7 +634,7 @@ fn long_run(file: &str) -> Result<LongRun, ValidationError> {
         // they are compared with is measured there too (one step of motion, v·dt, is of the
         // order of the tolerance)
         let look = (sim.steps() + 1) % PENETRATION_EVERY == 0;
-        let distance = if look { min_self_distance(&sim.model) } else { Real::INFINITY };
+        let distance = if look { min_self_distance(sim.model()) } else { Real::INFINITY };
         if let Err(e) = sim.step() {
             run.engine_error = Some(e.to_string());
             break;
@@ -646,14 +646,12 @@ fn long_run(file: &str) -> Result<LongRun, ValidationError> {
             // overlap offset (a contact handed over or split keeps its force continuous
             // through the offset, eq 1 with δ − δ₀)
             let carried = sim
-                .contacts
-                .list
+                .contacts()
                 .iter()
                 .map(|c| c.forces.normal_force / c.params.kn + c.state.overlap_offset)
                 .fold(0.0, Real::max);
             let by_force = sim
-                .contacts
-                .list
+                .contacts()
                 .iter()
                 .map(|c| c.forces.normal_force / c.params.kn)
                 .fold(0.0, Real::max);

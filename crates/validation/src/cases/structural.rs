@@ -154,7 +154,7 @@ pub fn run_catenary(ctx: &Context) -> Result<CaseReport, ValidationError> {
     let mut sim = Simulation::new(model, settings)?;
     let max_steps = 3_000_000;
     let steps = run_to_rest(&mut sim, 1e-8, 10_000, max_steps)?;
-    let pos = &sim.model.particles.pos;
+    let pos = &sim.model().particles.pos;
     let shape: Vec<(Real, Real)> =
         (first..=last).map(|i| (pos[i as usize].x, pos[i as usize].z)).collect();
     let sag_measured = -shape[half].1;

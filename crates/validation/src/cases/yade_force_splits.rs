@@ -54,16 +54,16 @@ fn settle(mut model: Model, nodes: Range<u32>, x: Real, y: Real) -> Result<Rest,
         ..Settings::default()
     };
     let mut sim = Simulation::new(model, settings)?;
-    let mut history = vec![(0.0, sim.model.particles.pos[sphere].z)];
+    let mut history = vec![(0.0, sim.model().particles.pos[sphere].z)];
     for _ in 0..200 {
         sim.run(20)?;
-        history.push((sim.time(), sim.model.particles.pos[sphere].z));
+        history.push((sim.time(), sim.model().particles.pos[sphere].z));
     }
     Ok(Rest {
         history,
         node_fz: nodes.map(|n| sim.forces()[n as usize].z).collect(),
-        contacts: sim.contacts.list.iter().filter(|c| c.forces.normal_force > 0.0).count(),
-        sphere_z: sim.model.particles.pos[sphere].z,
+        contacts: sim.contacts().iter().filter(|c| c.forces.normal_force > 0.0).count(),
+        sphere_z: sim.model().particles.pos[sphere].z,
     })
 }
 

@@ -116,7 +116,7 @@ pub fn run_cantilever(ctx: &Context) -> Result<CaseReport, ValidationError> {
     })?;
     let max_steps = 3_000_000;
     let steps = run_to_rest(&mut sim, 1e-10, 20_000, max_steps)?;
-    let p = &sim.model.particles;
+    let p = &sim.model().particles;
     let deflection: Vec<Real> = nodes.clone().map(|i| -p.pos[i as usize].z).collect();
     let yade_tip = yade_nodes[n][1];
     let node_difference =
@@ -283,34 +283,33 @@ pub fn run_sphere_on_net(ctx: &Context) -> Result<CaseReport, ValidationError> {
     let mut sim = Simulation::new(model, settings)?;
     let max_steps = number("/final/steps")? as u64;
     // the sphere's height every 1000 steps (as YADE's history) until at rest
-    let mut history = vec![(0.0, sim.model.particles.pos[sphere].z)];
-    let mut contact_history = vec![(0.0, sim.contacts.list.len() as Real)];
-    let mut centre_history = vec![(0.0, sim.model.particles.pos[centre].z)];
+    let mut history = vec![(0.0, sim.model().particles.pos[sphere].z)];
+    let mut contact_history = vec![(0.0, sim.contacts().len() as Real)];
+    let mut centre_history = vec![(0.0, sim.model().particles.pos[centre].z)];
     let (mut steps, mut quiet_chunks) = (0, 0);
     while steps < max_steps && quiet_chunks < 10 {
         sim.run(1000)?;
         steps += 1000;
-        history.push((sim.time(), sim.model.particles.pos[sphere].z));
-        contact_history.push((sim.time(), sim.contacts.list.len() as Real));
-        centre_history.push((sim.time(), sim.model.particles.pos[centre].z));
+        history.push((sim.time(), sim.model().particles.pos[sphere].z));
+        contact_history.push((sim.time(), sim.contacts().len() as Real));
+        centre_history.push((sim.time(), sim.model().particles.pos[centre].z));
         quiet_chunks = if max_speed(&sim) <= 1e-9 { quiet_chunks + 1 } else { 0 };
     }
     let yade_history = read_csv_columns(
         &dir.join("sphere_on_net_history.csv"),
         &["time", "sphere_z", "n_contacts", "centre_node_z"],
     )?;
-    let p = &sim.model.particles;
+    let p = &sim.model().particles;
     let sphere_z = p.pos[sphere].z;
     let centre_z = p.pos[centre].z;
     let touching: Vec<Real> = sim
-        .contacts
-        .list
+        .contacts()
         .iter()
         .filter(|c| c.forces.normal_force > 0.0)
         .map(|c| c.forces.normal_force)
         .collect();
     let fn_mean = touching.iter().sum::<Real>() / touching.len().max(1) as Real;
-    let support: Real = sim.contacts.list.iter().map(|c| c.forces.force_on_2.z.abs()).sum();
+    let support: Real = sim.contacts().iter().map(|c| c.forces.force_on_2.z.abs()).sum();
     let node_difference = yade_nodes
         .iter()
         .map(|row| {
@@ -365,7 +364,7 @@ pub fn run_sphere_on_net(ctx: &Context) -> Result<CaseReport, ValidationError> {
     ));
     report.inform("vertical contact force on the sphere (weight 10 N)", format!("{support:.6} N"));
     let centre_pos = p.pos[centre];
-    for c in sim.contacts.list.iter().filter(|c| c.forces.normal_force > 0.0) {
+    for c in sim.contacts().iter().filter(|c| c.forces.normal_force > 0.0) {
         let f = c.forces.force_on_2;
         let normal_dir = (f - c.forces.shear_force).normalize();
         report.inform(

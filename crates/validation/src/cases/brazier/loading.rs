@@ -68,10 +68,10 @@ pub fn tension_test(tube: &TubeCase) -> Result<TensionResult, ValidationError> {
         torque: Vec3::zeros(),
         ramp: Ramp::Linear { start: 0.0, duration: period },
     })?;
-    let pos0 = sim.model.particles.pos.clone();
+    let pos0 = sim.model().particles.pos.clone();
     let (l0, r0) = (gauge_length(&pos0, &rings), mean_radius(&pos0, &rings.middle));
     let window = window_steps(tube, sim.dt());
-    let strain = |sim: &Simulation| gauge_length(&sim.model.particles.pos, &rings) / l0 - 1.0;
+    let strain = |sim: &Simulation| gauge_length(&sim.model().particles.pos, &rings) / l0 - 1.0;
     let mut previous = Real::NAN;
     let max_time = 40.0 * period;
     loop {
@@ -89,7 +89,7 @@ pub fn tension_test(tube: &TubeCase) -> Result<TensionResult, ValidationError> {
                     ),
                 });
             }
-            let eps_ring = mean_radius(&sim.model.particles.pos, &rings.middle) / r0 - 1.0;
+            let eps_ring = mean_radius(&sim.model().particles.pos, &rings.middle) / r0 - 1.0;
             return Ok(TensionResult {
                 force,
                 membrane_stiffness: force / (2.0 * PI * tube.radius) / eps,
@@ -220,22 +220,17 @@ fn wind(run: &mut Bending, periods: Real) -> Result<FinalState, ValidationError>
     let mut balance_error: Real = 0.0;
     while run.sim.time() < end {
         run.advance(0.0)?;
-        min_during = min_during.min(min_self_distance(&run.sim.model));
+        min_during = min_during.min(min_self_distance(run.sim.model()));
         let change = (run.sim.energy().balance() - balance0).abs();
         balance_error = balance_error.max(change / run.sim.energy_watch().scale);
     }
-    let largest_overlap = run
-        .sim
-        .contacts
-        .list
-        .iter()
-        .map(|c| c.forces.normal_force / c.params.kn)
-        .fold(0.0, Real::max);
+    let largest_overlap =
+        run.sim.contacts().iter().map(|c| c.forces.normal_force / c.params.kn).fold(0.0, Real::max);
     Ok(FinalState {
-        min_distance: min_self_distance(&run.sim.model),
+        min_distance: min_self_distance(run.sim.model()),
         min_distance_during: min_during,
         largest_overlap,
-        contacts: run.sim.contacts.list.len(),
+        contacts: run.sim.contacts().len(),
         rotation: run.rotation,
         balance_error,
     })
@@ -306,7 +301,7 @@ impl Bending {
         let (mut sim, rings) = simulation(tube)?;
         let moment = Arc::new(AtomicU64::new(0.0_f64.to_bits()));
         sim.set_force_hook(end_moment_hook(rings.last.clone(), moment.clone()));
-        let reference = ring_normal(&sim.model.particles.pos, &rings.last);
+        let reference = ring_normal(&sim.model().particles.pos, &rings.last);
         let window = window_steps(tube, sim.dt());
         let period = tube.slowest_period();
         Ok(Bending { sim, rings, moment, reference, rotation: 0.0, window, period, curve: vec![] })
@@ -329,7 +324,7 @@ impl Bending {
             moment.store((m0 + rate * (sim.time() - t0)).to_bits(), Ordering::Relaxed);
             Control::Continue
         })?;
-        let pos = &self.sim.model.particles.pos;
+        let pos = &self.sim.model().particles.pos;
         self.rotation = ring_rotation(pos, &self.rings.last, self.reference, self.rotation);
         self.curve.push(CurvePoint {
             moment: self.moment(),
@@ -440,7 +435,8 @@ pub fn bend(
         let ok = run.hold(protocol.convergence, protocol.max_hold_periods, protocol.runaway)?;
         if !ok {
             result.buckling_moment = Some(run.moment());
-            result.collapse_position = Some(most_ovalised_ring(tube, &run.sim.model.particles.pos));
+            result.collapse_position =
+                Some(most_ovalised_ring(tube, &run.sim.model().particles.pos));
 
             break;
         }

@@ -1,0 +1,133 @@
+//! Energy terms of a simulation, the works of a step not yet added to them, and the energy
+//! watch (model.md §6).
+
+use flexdem_geom::Real;
+
+/// Energy terms of a simulation (model.md §6). Works and dissipations are cumulative since the
+/// start; kinetic and elastic terms are the current values.
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Energy {
+    /// Translational kinetic energy (J).
+    pub kinetic_translation: Real,
+    /// Rotational kinetic energy (J).
+    pub kinetic_rotation: Real,
+    /// Elastic energy stored in links (J).
+    pub elastic_links: Real,
+    /// Elastic energy stored in contacts (J).
+    pub elastic_contacts: Real,
+    /// Work done by gravity (J).
+    pub gravity_work: Real,
+    /// Work done by imposed loads and the user's force hook: forces and torques on the free
+    /// DOFs, `Σ (F·v + τ·ω)·dt` (J).
+    pub load_work: Real,
+    /// Work done by the boundaries: moving walls (`Σ F_wall→body·v_wall·dt` over wall
+    /// contacts) and imposed velocities and spins (the support's reaction, `−Σ (F·v + τ·ω)·dt`
+    /// over blocked DOFs, `F` and `τ` from links and contacts) (J).
+    pub boundary_work: Real,
+    /// Energy put in by contacts that started or ended between two steps (J): `½·kn·δ·δ₋`
+    /// per first touch (`δ₋` the overlap one step before: negative for a contact found on
+    /// time, positive for one found late, with an overlap one step of approach does not
+    /// explain) and `−½·F·δ_now` per contact ended by separating (see
+    /// `ContactPipeline::settle_births`). Collisions found on time add as much as they take.
+    pub contact_births: Real,
+    /// Elastic energy given up by contacts that ended or were handed over while holding it
+    /// (J).
+    pub contact_releases: Real,
+    /// Energy removed by damping (J).
+    pub damping: Real,
+    /// Energy dissipated by links (plastic caps, slip after decohesion, breakage) (J).
+    pub links_dissipated: Real,
+    /// Energy dissipated by contact friction (J).
+    pub friction: Real,
+}
+
+impl Energy {
+    /// Energy stored in the system: kinetic plus elastic.
+    pub fn stored(&self) -> Real {
+        self.kinetic_translation
+            + self.kinetic_rotation
+            + self.elastic_links
+            + self.elastic_contacts
+    }
+
+    /// Energy put in: the works of gravity, loads and boundaries and the late contact births.
+    pub fn put_in(&self) -> Real {
+        self.gravity_work + self.load_work + self.boundary_work + self.contact_births
+    }
+
+    /// Energy taken out: damping, link and contact dissipation, contact releases.
+    pub fn taken_out(&self) -> Real {
+        self.damping + self.links_dissipated + self.friction + self.contact_releases
+    }
+
+    /// Stored energy minus the energy put in plus the energy taken out: constant in time when
+    /// the balance closes.
+    pub fn balance(&self) -> Real {
+        self.stored() - self.put_in() + self.taken_out()
+    }
+
+    /// The energy scale a balance error is measured against: the largest of the stored
+    /// energy, each work, the births and what was taken out.
+    pub fn scale(&self) -> Real {
+        [
+            self.stored().abs(),
+            self.gravity_work.abs(),
+            self.load_work.abs(),
+            self.boundary_work.abs(),
+            self.contact_births.abs(),
+            self.taken_out().abs(),
+        ]
+        .into_iter()
+        .fold(0.0, Real::max)
+    }
+}
+
+/// Works of one step (from x(t) to x(t + dt)), added to [`Energy`] at the next step so that
+/// every term refers to the same instant.
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct PendingWork {
+    /// Gravity (J).
+    pub gravity: Real,
+    /// Imposed loads and the force hook (J).
+    pub load: Real,
+    /// Moving walls and imposed velocities (J).
+    pub boundary: Real,
+    /// The second half of the last kick's damping (J, see `StepWork::damping_next`).
+    pub damping: Real,
+}
+
+/// The energy watch (model: "a run watches its energy"): the balance at the start (after the
+/// first step) and the largest energy scale seen, against which the balance error is measured
+/// each step.
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct EnergyWatch {
+    /// The balance at the start of the simulation (J).
+    pub initial_balance: Real,
+    /// The largest of |initial balance| and [`Energy::scale`] over the run so far (J).
+    pub scale: Real,
+}
+
+impl EnergyWatch {
+    /// `(B(t) − B(0)) / scale`: positive when energy appeared from nowhere, negative when it
+    /// went unaccounted; 0 while the scale is 0.
+    pub fn relative_error(&self, e: &Energy) -> Real {
+        if self.scale > 0.0 {
+            (e.balance() - self.initial_balance) / self.scale
+        } else {
+            0.0
+        }
+    }
+}
+
+/// The energy bookkeeping of a simulation: the terms, the works of the last step not yet in
+/// them, and the watch.
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct EnergyAccount {
+    /// Energy terms at the last step.
+    pub terms: Energy,
+    /// Works of the last step (from x(t) to x(t + dt)), added at the next step so that every
+    /// energy term refers to the same instant.
+    pub pending: PendingWork,
+    /// The balance at the start and the energy scale so far.
+    pub watch: EnergyWatch,
+}

@@ -1,0 +1,62 @@
+//! The pipeline of a simulation: what steps the [`State`] and can be dropped and rebuilt from
+//! it at any time (rapier's habit): the collider, the adjacency of the features, the contact
+//! buffers, the per-particle force sums, the stage timers and the user's force hook.
+
+use crate::collider::Collider;
+use crate::contacts::ContactPipeline;
+use crate::state::State;
+use crate::timers::Timers;
+use flexdem_elements::{Adjacency, Particles};
+use flexdem_geom::{Real, Vec3};
+
+/// A user hook that adds forces and torques each step: `(time, particles, force, torque)`.
+pub type ForceHook = Box<dyn FnMut(Real, &Particles, &mut [Vec3], &mut [Vec3]) + Send>;
+
+/// Caches and buffers of a simulation, rebuilt from its state (nothing here is saved).
+pub(crate) struct Pipeline {
+    /// Collidable elements and candidate pairs.
+    pub(crate) collider: Collider,
+    /// Which features share nodes (for the one-contact-per-touching rule).
+    pub(crate) adjacency: Adjacency,
+    /// Buffers of contact detection and update.
+    pub(crate) contacts: ContactPipeline,
+    /// Total force on each particle at the last step.
+    pub(crate) force: Vec<Vec3>,
+    /// Total torque on each particle at the last step.
+    pub(crate) torque: Vec<Vec3>,
+    /// Force of the imposed loads and the hook on each particle (for their work).
+    pub(crate) external_force: Vec<Vec3>,
+    /// Torque of the imposed loads and the hook on each particle.
+    pub(crate) external_torque: Vec<Vec3>,
+    /// Per-stage wall-clock times.
+    pub(crate) timers: Timers,
+    /// The user's hook, if any.
+    pub(crate) force_hook: Option<ForceHook>,
+}
+
+impl Pipeline {
+    /// A fresh pipeline for `state` (no force hook, zero timers).
+    pub(crate) fn new(state: &State) -> Self {
+        let n = state.model.particles.len();
+        Pipeline {
+            collider: Collider::new(&state.model, state.settings.verlet_factor),
+            adjacency: state.model.adjacency(),
+            contacts: ContactPipeline::new(&state.model),
+            force: vec![Vec3::zeros(); n],
+            torque: vec![Vec3::zeros(); n],
+            external_force: vec![Vec3::zeros(); n],
+            external_torque: vec![Vec3::zeros(); n],
+            timers: Timers::default(),
+            force_hook: None,
+        }
+    }
+
+    /// Rebuilds what depends on the model and settings of `state`, keeping the force hook and
+    /// the timers.
+    pub(crate) fn rebuild(&mut self, state: &State) {
+        let fresh = Pipeline::new(state);
+        let hook = self.force_hook.take();
+        let timers = self.timers;
+        *self = Pipeline { force_hook: hook, timers, ..fresh };
+    }
+}

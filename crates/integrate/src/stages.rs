@@ -1,0 +1,439 @@
+//! The stages of a step (model.md §4–6), each its own method of [`Simulation`], and the
+//! bookkeeping around them: energy terms, the energy watch, the checks of a run going
+//! unstable and the time step.
+
+use crate::contacts::Contact;
+use crate::culprit::describe;
+use crate::energy::PendingWork;
+use crate::integrator::{leapfrog_step, StepWork};
+use crate::links::LinkUpdate;
+use crate::settings::TimeStep;
+use crate::simulation::Simulation;
+use crate::time_step::{critical_step_from_stiffness, p_wave_time_step, StiffnessSums};
+use crate::timers::Stage;
+use crate::SimulationError;
+use flexdem_elements::virtual_sphere::Feature;
+use flexdem_elements::Dofs;
+use flexdem_geom::{Real, Vec3};
+use rayon::prelude::*;
+
+/// How the warning about energy lost beyond the energy tolerance begins.
+const ENERGY_LOST_WARNING: &str = "the run lost";
+
+/// How the warning about a fixed dt above the critical step begins.
+const FIXED_DT_WARNING: &str = "the fixed time step";
+
+impl Simulation {
+    /// Estimates the critical step from the links (and later the contacts) and sets `dt`.
+    pub fn update_time_step(&mut self) -> Result<(), SimulationError> {
+        let mut k = StiffnessSums::new(self.state.model.particles.len());
+        let p = &self.state.model.particles;
+        for (l, nodes) in self.state.links.nodes.iter().enumerate() {
+            if self.state.links.state[l].status == flexdem_contact::LinkStatus::Broken {
+                continue;
+            }
+            let [a, b] = nodes.map(|n| n as usize);
+            let d = p.pos[b] - p.pos[a];
+            let len = d.norm();
+            let n = if len > 0.0 { d / len } else { Vec3::x() };
+            let s = &self.state.links.params[l].stiffness;
+            for i in [a, b] {
+                k.add(i, &n, s.kn, s.ks, 0.5 * len, s.kt, s.kb);
+            }
+        }
+        for c in &self.state.contacts.list {
+            add_contact_stiffness(&mut k, c);
+        }
+        self.state.clock.dt_updated_at = self.state.clock.steps;
+        let critical = critical_step_from_stiffness(&self.state.model, &k)
+            .or_else(|| p_wave_time_step(&self.state.model))
+            .unwrap_or(Real::INFINITY);
+        self.state.clock.stiffness = k;
+        self.state.clock.critical_dt = critical;
+        self.state.clock.dt = match self.state.settings.time_step {
+            TimeStep::Auto { safety } => {
+                if !critical.is_finite() {
+                    return Err(SimulationError::NoTimeStep);
+                }
+                safety * critical
+            }
+            TimeStep::Fixed(dt) => {
+                // once: the check is redone periodically and would repeat itself
+                let said = self.state.warnings.iter().any(|w| w.starts_with(FIXED_DT_WARNING));
+                if dt > critical && !said {
+                    self.state.warnings.push(format!(
+                        "{FIXED_DT_WARNING} {dt:.3e} s is above the critical step {critical:.3e} s \
+                         (at step {steps}): the run may explode; use dt = auto or a step below \
+                         {critical:.3e} s",
+                        steps = self.state.clock.steps
+                    ));
+                }
+                dt
+            }
+        };
+        Ok(())
+    }
+
+    /// Advances the simulation by one step: a list of named stages (model.md §4–6).
+    ///
+    /// The contacts and links advance their shear springs by the motion of the step just done
+    /// (velocities of t − dt₀/2 over dt₀, the previous step); the leapfrog then kicks the
+    /// velocities over (dt₀ + dt)/2 and moves the positions by dt (see `leapfrog_step`).
+    pub fn step(&mut self) -> Result<(), SimulationError> {
+        let dt = self.state.clock.dt;
+        let previous =
+            if self.state.clock.previous_dt > 0.0 { self.state.clock.previous_dt } else { dt };
+        self.collision_stage();
+        let appeared = self.contact_stage(previous);
+        let link_sums = self.link_stage(previous);
+        let load_work = self.external_load_stage(previous);
+        let work = self.integration_stage(previous, dt);
+        self.state.clock.previous_dt = dt;
+        self.state.clock.time += dt;
+        self.state.clock.steps += 1;
+        self.bookkeeping_stage(&work, load_work, &link_sums, dt, appeared)
+    }
+
+    /// Bookkeeping after the step: the checks (NaN, a particle jumping), the energy terms,
+    /// the energy watch and the time step.
+    fn bookkeeping_stage(
+        &mut self,
+        work: &StepWork,
+        load_work: Real,
+        link_sums: &LinkUpdate,
+        dt: Real,
+        appeared: bool,
+    ) -> Result<(), SimulationError> {
+        let t0 = self.pipeline.timers.start();
+        let result = self.check_finite().and_then(|()| {
+            self.account_energy(work, load_work, link_sums, dt);
+            self.watch_energy()?;
+            self.time_step_stage(appeared)
+        });
+        self.pipeline.timers.stop(Stage::Bookkeeping, t0);
+        result
+    }
+
+    /// Collision: rebuilds the candidate pairs when a particle has moved beyond its margin.
+    fn collision_stage(&mut self) {
+        let t0 = self.pipeline.timers.start();
+        if self.pipeline.collider.needs_rebuild(&self.state.model) {
+            self.pipeline.collider.rebuild(&self.state.model);
+        }
+        self.pipeline.timers.stop(Stage::Collision, t0);
+    }
+
+    /// Contacts: detection, births, the contact law, node loads (forces reset first).
+    /// Returns whether contacts appeared.
+    fn contact_stage(&mut self, dt: Real) -> bool {
+        let t0 = self.pipeline.timers.start();
+        self.pipeline.force.iter_mut().for_each(|f| *f = Vec3::zeros());
+        self.pipeline.torque.iter_mut().for_each(|t| *t = Vec3::zeros());
+        let before = self.state.contacts.list.len();
+        let births = self.pipeline.contacts.detect(
+            &mut self.state.contacts,
+            &self.state.model,
+            &self.pipeline.adjacency,
+            &self.pipeline.collider,
+            dt,
+        );
+        // a birth's energy is a jump at time t, where the elastic terms of this step are
+        self.state.energy.terms.contact_births += births.born_energy;
+        self.state.energy.terms.contact_releases += births.released;
+        self.state.contacts.born_deep += births.born_deep;
+        let appeared = self.state.contacts.list.len() > before;
+        self.account_new_contacts();
+        self.pipeline.contacts.apply(
+            &mut self.state.contacts,
+            &self.state.model,
+            dt,
+            &mut self.pipeline.force,
+            &mut self.pipeline.torque,
+        );
+        self.pipeline.timers.stop(Stage::Contacts, t0);
+        appeared
+    }
+
+    /// Links: every beam link, loads summed per node.
+    fn link_stage(&mut self, dt: Real) -> LinkUpdate {
+        let t0 = self.pipeline.timers.start();
+        let sums = self.state.links.update(&self.state.model.particles, dt);
+        self.state.links.add_loads(&mut self.pipeline.force, &mut self.pipeline.torque);
+        self.pipeline.timers.stop(Stage::Links, t0);
+        sums
+    }
+
+    /// Imposed loads and the user's hook, kept apart in `external_force` and
+    /// `external_torque` for their work, and added to the totals (nothing to sum over every
+    /// particle without them). Returns the half of their work over the step before (`previous`
+    /// long), with the velocities of t − dt₀/2 (see `StepWork::boundary` for the halves).
+    fn external_load_stage(&mut self, previous: Real) -> Real {
+        if !self.is_loaded() {
+            return 0.0;
+        }
+        let t0 = self.pipeline.timers.start();
+        self.pipeline.external_force.iter_mut().for_each(|f| *f = Vec3::zeros());
+        self.pipeline.external_torque.iter_mut().for_each(|t| *t = Vec3::zeros());
+        for load in &self.state.loads {
+            let s = load.ramp.factor(self.state.clock.time);
+            for &i in &load.particles {
+                self.pipeline.external_force[i as usize] += load.force * s;
+                self.pipeline.external_torque[i as usize] += load.torque * s;
+            }
+        }
+        if let Some(hook) = self.pipeline.force_hook.as_mut() {
+            hook(
+                self.state.clock.time,
+                &self.state.model.particles,
+                &mut self.pipeline.external_force,
+                &mut self.pipeline.external_torque,
+            );
+        }
+        for (f, e) in self.pipeline.force.iter_mut().zip(&self.pipeline.external_force) {
+            *f += e;
+        }
+        for (t, e) in self.pipeline.torque.iter_mut().zip(&self.pipeline.external_torque) {
+            *t += e;
+        }
+        let work = self.external_power() * 0.5 * previous;
+        self.pipeline.timers.stop(Stage::Loads, t0);
+        work
+    }
+
+    /// Whether loads or a force hook act.
+    fn is_loaded(&self) -> bool {
+        !self.state.loads.is_empty() || self.pipeline.force_hook.is_some()
+    }
+
+    /// Integration: the leapfrog with damping (velocities kicked over (dt₀ + dt)/2, positions
+    /// moved over `dt`), then the walls move.
+    fn integration_stage(&mut self, previous: Real, dt: Real) -> StepWork {
+        let t0 = self.pipeline.timers.start();
+        let g = self.state.settings.gravity;
+        let mut work = leapfrog_step(
+            &mut self.state.model.particles,
+            &self.pipeline.force,
+            &self.pipeline.torque,
+            &g,
+            self.state.settings.damping,
+            previous,
+            dt,
+        );
+        let walls = self.wall_power();
+        work.boundary += 0.5 * walls * previous;
+        work.boundary_next += 0.5 * walls * dt;
+        for wall in &mut self.state.model.walls {
+            wall.point += wall.velocity * dt;
+        }
+        self.pipeline.timers.stop(Stage::Integration, t0);
+        work
+    }
+
+    /// Power of the moving walls at time t: `Σ F·v_wall` over wall contacts, `F` the force
+    /// the wall puts on the body.
+    fn wall_power(&self) -> Real {
+        let walls = &self.state.model.walls;
+        if walls.iter().all(|w| w.velocity == Vec3::zeros()) {
+            return 0.0;
+        }
+        self.state
+            .contacts
+            .list
+            .iter()
+            .filter_map(|c| match c.site1.feature {
+                Feature::Wall(w) => Some(c.forces.force_on_2.dot(&walls[w as usize].velocity)),
+                _ => None,
+            })
+            .sum()
+    }
+
+    /// Time step: the critical step is re-estimated every `time_step_interval` steps (for a
+    /// fixed dt too, to warn when contacts or large deformations have brought it below that
+    /// dt) and soon after contacts appear.
+    fn time_step_stage(&mut self, appeared: bool) -> Result<(), SimulationError> {
+        let since = self.state.clock.steps - self.state.clock.dt_updated_at;
+        if since >= self.state.settings.time_step_interval || (appeared && since >= 10) {
+            self.update_time_step()?;
+        }
+        Ok(())
+    }
+
+    /// Adds the stiffness of the contacts made at this step to the particles they touch and,
+    /// with an automatic step, lowers dt at once if one of those particles now needs it (a
+    /// contact stiffer than the links must not run for even a few steps above its critical
+    /// step). O(new contacts); the full estimate is redone every `time_step_interval` steps.
+    fn account_new_contacts(&mut self) {
+        if self.pipeline.contacts.fresh.is_empty()
+            || self.state.clock.stiffness.translational.len() != self.state.model.particles.len()
+        {
+            return;
+        }
+        let TimeStep::Auto { safety } = self.state.settings.time_step else { return };
+        let p = &self.state.model.particles;
+        let mut lowest = Real::INFINITY;
+        for &i in &self.pipeline.contacts.fresh {
+            let c = &self.state.contacts.list[i];
+            add_contact_stiffness(&mut self.state.clock.stiffness, c);
+            for site in [&c.site1, &c.site2] {
+                for slot in 0..site.node_count() {
+                    let n = site.nodes[slot] as usize;
+                    if p.blocked[n] == Dofs::ALL {
+                        continue;
+                    }
+                    let (kt, kr) = (
+                        self.state.clock.stiffness.translational[n].max(),
+                        self.state.clock.stiffness.rotational[n].max(),
+                    );
+                    let mut ratio = Real::INFINITY;
+                    if kt > 0.0 {
+                        ratio = ratio.min(p.mass[n] / kt);
+                    }
+                    if kr > 0.0 {
+                        ratio = ratio.min(p.inertia[n] / kr);
+                    }
+                    lowest = lowest.min((2.0 * ratio).sqrt());
+                }
+            }
+        }
+        if lowest < self.state.clock.critical_dt {
+            self.state.clock.critical_dt = lowest;
+            self.state.clock.dt = self.state.clock.dt.min(safety * lowest);
+        }
+    }
+
+    /// Energy at time t (the start of the step just done): kinetic from the half-step
+    /// velocities around t, elastic from the forces computed at t, works up to t (the forces
+    /// at t count half over the step before t; the other half is pending, see
+    /// `StepWork::boundary`). `load_work` is the loads' half over the step before.
+    fn account_energy(&mut self, work: &StepWork, load_work: Real, links: &LinkUpdate, dt: Real) {
+        let load_next = if self.is_loaded() { self.external_power() * 0.5 * dt } else { 0.0 };
+        let e = &mut self.state.energy.terms;
+        e.kinetic_translation = work.kinetic_translation;
+        e.kinetic_rotation = work.kinetic_rotation;
+        e.elastic_links = links.elastic_energy;
+        e.elastic_contacts = self.state.contacts.elastic_energy();
+        e.friction = self.state.contacts.dissipated();
+        e.links_dissipated = links.dissipated;
+        e.gravity_work += self.state.energy.pending.gravity;
+        e.load_work += self.state.energy.pending.load + load_work;
+        e.boundary_work += self.state.energy.pending.boundary + work.boundary;
+        e.damping += self.state.energy.pending.damping + work.damping;
+        self.state.energy.pending = PendingWork {
+            gravity: work.gravity,
+            load: load_next,
+            boundary: work.boundary_next,
+            damping: work.damping_next,
+        };
+        if self.state.clock.steps == 1 {
+            // the reference of the watch is the balance after the first step: the first kick's
+            // damping and the lag of the first step's works make an O(dt²) offset at the start
+            // that is large next to the energy of a run that starts from rest
+            self.state.energy.watch.initial_balance = e.balance();
+        }
+        self.state.energy.watch.scale = self.state.energy.watch.scale.max(e.scale());
+    }
+
+    /// Power of the imposed loads and the hook, `Σ (F·v + τ·ω)` with the current velocities,
+    /// on every DOF (on a blocked one the support's reaction, counted in the boundary work,
+    /// takes the rest of the node's force).
+    fn external_power(&self) -> Real {
+        let p = &self.state.model.particles;
+        let forces: Real =
+            self.pipeline.external_force.iter().zip(&p.vel).map(|(f, v)| f.dot(v)).sum();
+        let torques: Real =
+            self.pipeline.external_torque.iter().zip(&p.ang_vel).map(|(t, w)| t.dot(w)).sum();
+        forces + torques
+    }
+
+    /// Stops the run when the energy balance error passes `settings.energy_tolerance`
+    /// (relative to the energy scale) on the side of energy created, naming the step, the
+    /// time and where the energy is. Energy lost beyond the limit (dissipation the balance
+    /// does not count) raises a warning, once.
+    fn watch_energy(&mut self) -> Result<(), SimulationError> {
+        let Some(limit) = self.state.settings.energy_tolerance else { return Ok(()) };
+        let error = self.state.energy.watch.relative_error(&self.state.energy.terms);
+        if error.is_nan() || error.abs() <= limit {
+            return Ok(());
+        }
+        let change = self.state.energy.terms.balance() - self.state.energy.watch.initial_balance;
+        if error < 0.0 {
+            if !self.state.warnings.iter().any(|w| w.starts_with(ENERGY_LOST_WARNING)) {
+                self.state.warnings.push(format!(
+                    "{ENERGY_LOST_WARNING} {change:+.4e} J ({error:+.3e} of the energy scale \
+                     {scale:.4e} J) by step {step} (t = {time:.6e} s) that the balance does not \
+                     count: {culprit}",
+                    scale = self.state.energy.watch.scale,
+                    step = self.state.clock.steps,
+                    time = self.state.clock.time,
+                    culprit = describe(&self.state)
+                ));
+            }
+            return Ok(());
+        }
+        Err(SimulationError::EnergyBalance {
+            step: self.state.clock.steps,
+            time: self.state.clock.time,
+            error,
+            limit,
+            change,
+            scale: self.state.energy.watch.scale,
+            culprit: describe(&self.state),
+        })
+    }
+
+    /// Stops on NaN or infinity, and on a particle that moved by more than its reach in one
+    /// step (the sign of an unstable run, long before NaN appears), naming the particle. The
+    /// reach is the particle's radius, or for a node the size of the smallest element holding
+    /// it when that is larger: a thin cable or membrane (radius of microns, elements of
+    /// centimetres) legitimately moves by more than its radius per step.
+    fn check_finite(&self) -> Result<(), SimulationError> {
+        let p = &self.state.model.particles;
+        let dt = self.state.clock.dt;
+        let reach = &self.pipeline.collider.reach;
+        let jump = (0..p.len())
+            .into_par_iter()
+            .map(|i| (p.vel[i].norm() * dt / reach[i], i))
+            .filter(|(ratio, _)| *ratio > 1.0)
+            .max_by(|a, b| a.0.total_cmp(&b.0).then(b.1.cmp(&a.1)));
+        let bad = (0..p.len()).into_par_iter().find_first(|&i| {
+            !(p.pos[i]
+                .iter()
+                .chain(p.vel[i].iter())
+                .chain(p.ang_vel[i].iter())
+                .all(|x| x.is_finite()))
+        });
+        match bad {
+            Some(i) => Err(SimulationError::NonFinite {
+                particle: i as u32,
+                step: self.state.clock.steps,
+                time: self.state.clock.time,
+                dt: self.state.clock.dt,
+                critical_dt: self.state.clock.critical_dt,
+            }),
+            None => match jump {
+                Some((_, i)) => Err(SimulationError::Exploding {
+                    particle: i as u32,
+                    displacement: p.vel[i].norm() * dt,
+                    reach: self.pipeline.collider.reach[i],
+                    step: self.state.clock.steps,
+                    time: self.state.clock.time,
+                    dt,
+                    critical_dt: self.state.clock.critical_dt,
+                }),
+                None => Ok(()),
+            },
+        }
+    }
+}
+
+/// Adds a contact's stiffness to the particles carrying its two sites (the full contact
+/// stiffness on each: conservative), with the site's radius as the lever arm of the shear.
+fn add_contact_stiffness(k: &mut StiffnessSums, c: &Contact) {
+    let n = c.state.normal;
+    for site in [&c.site1, &c.site2] {
+        for slot in 0..site.node_count() {
+            let node = site.nodes[slot] as usize;
+            k.add(node, &n, c.params.kn, c.params.ks, site.radius, 0.0, 0.0);
+        }
+    }
+}
