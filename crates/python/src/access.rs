@@ -190,3 +190,78 @@ pub(crate) fn energy(sim: &Simulation) -> Vec<(String, Real)> {
     ]);
     terms
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use flexdem_scene::parse_scene;
+
+    /// A chain of 4 links clamped at its start, pulled at its end.
+    fn chain() -> Simulation {
+        let text = r#"
+            [simulation]
+            steps = 10
+            [materials.m]
+            young = 1e8
+            poisson = 0.3
+            density = 1000
+            friction_angle_deg = 30
+            [[structures]]
+            name = "c"
+            kind = "chain"
+            material = "m"
+            node_radius = 0.01
+            start = [0, 0, 0]
+            end = [1, 0, 0]
+            segments = 4
+            [[spheres]]
+            name = "s"
+            kind = "single"
+            material = "m"
+            center = [0.5, 0, 0.5]
+            radius = 0.05
+            [[boundary]]
+            select = { structure = "c", side = "start" }
+            block = "xyzXYZ"
+            [[loads]]
+            select = { structure = "c", side = "end" }
+            force = [1, 0, 0]
+        "#;
+        let scene = parse_scene(text, "chain.toml".as_ref()).expect("scene");
+        flexdem_run::build_simulation(scene).expect("simulation").0
+    }
+
+    #[test]
+    fn particle_columns_are_flat_rows_of_three() {
+        let mut sim = chain();
+        assert_eq!(particle_count(&sim), 6);
+        let pos = particle_vectors(&sim, ParticleColumn::Positions);
+        assert_eq!(pos.len(), 18);
+        assert_eq!(&pos[15..], &[0.5, 0.0, 0.5]);
+        assert_eq!(structures(&sim), vec![0, 0, 0, 0, 0, -1]);
+        assert_eq!(radii(&sim)[5], 0.05);
+        // no force before the first step, the load after it
+        assert!(particle_vectors(&sim, ParticleColumn::Forces).iter().all(|&f| f == 0.0));
+        sim.step().expect("step");
+        let forces = particle_vectors(&sim, ParticleColumn::Forces);
+        assert!(forces[12] > 0.0, "the pulled end: {forces:?}");
+    }
+
+    #[test]
+    fn links_and_energy() {
+        let mut sim = chain();
+        let t = links(&sim);
+        assert_eq!(t.nodes, vec![0, 1, 1, 2, 2, 3, 3, 4]);
+        assert_eq!(t.status, vec![0; 4]);
+        assert_eq!(t.force, vec![0.0; 12]);
+        sim.run(10).expect("run");
+        let t = links(&sim);
+        assert_eq!(t.normal_force.len(), 4);
+        assert!(t.normal_force[3] < 0.0, "the last link in tension: {:?}", t.normal_force);
+        assert!(contacts(&sim).normal_force.is_empty());
+        let e = energy(&sim);
+        let names: Vec<&str> = e.iter().map(|(k, _)| k.as_str()).collect();
+        assert!(names.contains(&"elastic_links") && names.contains(&"balance"));
+        assert_eq!(names.len(), 12 + 7);
+    }
+}
