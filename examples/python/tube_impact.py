@@ -67,7 +67,7 @@ def main():
         bottom.plot(times, energies[term], label=term)
     bottom.set_xlabel("time (s)")
     bottom.set_ylabel("energy (J)")
-    bottom.legend(fontsize="small")
+    bottom.legend(fontsize="small", loc="center right")
     fig.tight_layout()
     fig.savefig(args.png, dpi=120)
     print(f"plot written to {args.png}")
