@@ -2,6 +2,8 @@
 
 use super::test_support::*;
 use super::*;
+use crate::{MassLumping, Model};
+use flexdem_geom::{Real, Vec3};
 use proptest::prelude::*;
 use std::f64::consts::PI;
 
