@@ -231,6 +231,12 @@ impl Run {
         self.target
     }
 
+    /// Moves where the run ends (a script running in stages); later checkpoints store the
+    /// new run length.
+    pub fn set_target(&mut self, target: RunLength) {
+        self.target = target;
+    }
+
     /// Whether the run length is reached.
     pub fn is_done(&self) -> bool {
         reached(&self.sim, self.target)
@@ -249,6 +255,11 @@ impl Run {
     /// Where checkpoints go.
     pub fn checkpoint_path(&self) -> &Path {
         &self.checkpoint_path
+    }
+
+    /// Sends later checkpoints to `path` (made absolute against the current folder).
+    pub fn set_checkpoint_path(&mut self, path: &Path) {
+        self.checkpoint_path = absolute(path);
     }
 
     /// Worker threads asked for (None: the machine's default), as stored in checkpoints.

@@ -142,3 +142,26 @@ fn setup_errors_say_whether_the_input_is_at_fault() {
     let err = Run::resume(&not_a_checkpoint, RunOptions::default()).err().unwrap();
     assert!(matches!(err, RunError::ReadCheckpoint(_)) && err.is_bad_input(), "{err}");
 }
+
+#[test]
+fn a_script_moves_the_end_of_the_run_and_where_its_checkpoints_go() {
+    let dir = tempfile::tempdir().unwrap();
+    let options = RunOptions { steps: Some(10), no_output: true, ..RunOptions::default() };
+    let mut run = Run::from_scene(&example("cantilever.toml"), options).unwrap();
+    assert_eq!(run.advance(None, &mut NoObserver).unwrap(), Stop::Reached);
+    assert_eq!(run.sim().steps(), 10);
+    // a later stage: 5 steps more
+    run.set_target(RunLength::Steps(15));
+    assert!(!run.is_done());
+    assert_eq!(run.advance(None, &mut NoObserver).unwrap(), Stop::Reached);
+    assert_eq!(run.sim().steps(), 15);
+    // a checkpoint where the script likes, with the run length set then
+    let path = dir.path().join("stage").join("two.flexdem");
+    run.set_checkpoint_path(&path);
+    assert_eq!(run.checkpoint_path(), path);
+    run.save_checkpoint().unwrap();
+    let resumed = Run::resume(&path, RunOptions::default()).unwrap();
+    assert_eq!(resumed.target(), RunLength::Steps(15));
+    assert!(resumed.is_done());
+    assert_eq!(final_state(&resumed), final_state(&run));
+}

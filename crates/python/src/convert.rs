@@ -1,0 +1,94 @@
+//! A Python dict (nested dicts, lists, tuples, str, int, float, bool, numpy arrays and
+//! scalars, paths) to a TOML table, so that a script builds a scene with the keys of a scene
+//! file and the scene reader checks it as it checks a file.
+
+use crate::errors::SceneError;
+use pyo3::prelude::*;
+use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
+
+/// `obj` (a dict) as a TOML table; errors name the key (`structures[0].radius`).
+pub(crate) fn dict_to_table(obj: &Bound<'_, PyAny>) -> PyResult<toml::Table> {
+    match to_value(obj, "")? {
+        toml::Value::Table(table) => Ok(table),
+        _ => Err(SceneError::new_err(format!(
+            "a scene is a dict of tables (`simulation`, `materials`, ...), not a {}",
+            type_name(obj)
+        ))),
+    }
+}
+
+/// `obj` as the text of a TOML file.
+pub(crate) fn dict_to_toml(obj: &Bound<'_, PyAny>) -> PyResult<String> {
+    let table = dict_to_table(obj)?;
+    toml::to_string(&table).map_err(|e| SceneError::new_err(format!("cannot write TOML: {e}")))
+}
+
+/// The Python type name of `obj`.
+fn type_name(obj: &Bound<'_, PyAny>) -> String {
+    obj.get_type().name().map(|n| n.to_string()).unwrap_or_else(|_| "?".to_string())
+}
+
+/// `path` then `key`, dotted.
+fn child(path: &str, key: &str) -> String {
+    if path.is_empty() {
+        key.to_string()
+    } else {
+        format!("{path}.{key}")
+    }
+}
+
+/// `obj` (at `path` in the dict) as a TOML value.
+fn to_value(obj: &Bound<'_, PyAny>, path: &str) -> PyResult<toml::Value> {
+    let at = |message: String| {
+        let key = if path.is_empty() { "the scene" } else { path };
+        SceneError::new_err(format!("`{key}`: {message}"))
+    };
+    // bool before int: Python's bool is an int
+    if let Ok(b) = obj.cast::<PyBool>() {
+        return Ok(toml::Value::Boolean(b.is_true()));
+    }
+    if obj.cast::<PyInt>().is_ok() {
+        let i: i64 = obj.extract().map_err(|_| at("integer out of the 64-bit range".into()))?;
+        return Ok(toml::Value::Integer(i));
+    }
+    if let Ok(f) = obj.cast::<PyFloat>() {
+        return Ok(toml::Value::Float(f.value()));
+    }
+    if let Ok(s) = obj.cast::<PyString>() {
+        return Ok(toml::Value::String(s.extract::<String>()?));
+    }
+    if let Ok(d) = obj.cast::<PyDict>() {
+        let mut table = toml::Table::new();
+        for (k, v) in d.iter() {
+            let key = match k.cast::<PyString>() {
+                Ok(s) => s.extract::<String>()?,
+                Err(_) => return Err(at(format!("keys must be strings, not {}", type_name(&k)))),
+            };
+            let value = to_value(&v, &child(path, &key))?;
+            table.insert(key, value);
+        }
+        return Ok(toml::Value::Table(table));
+    }
+    if obj.cast::<PyList>().is_ok() || obj.cast::<PyTuple>().is_ok() {
+        let mut items = Vec::new();
+        for (i, item) in obj.try_iter()?.enumerate() {
+            items.push(to_value(&item?, &format!("{path}[{i}]"))?);
+        }
+        return Ok(toml::Value::Array(items));
+    }
+    if obj.is_none() {
+        return Err(at("None has no TOML value: leave the key out for its default".into()));
+    }
+    // numpy arrays and scalars: their Python values
+    if obj.hasattr("tolist")? {
+        return to_value(&obj.call_method0("tolist")?, path);
+    }
+    // paths (pathlib.Path, os.PathLike)
+    if obj.hasattr("__fspath__")? {
+        return to_value(&obj.call_method0("__fspath__")?, path);
+    }
+    Err(at(format!(
+        "a {} has no TOML value (use str, int, float, bool, list or dict)",
+        type_name(obj)
+    )))
+}

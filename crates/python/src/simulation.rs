@@ -1,0 +1,417 @@
+//! `flexdem.Simulation`: a run of the run driver ([`flexdem_run::Run`]) seen from Python.
+
+use crate::access::{self, ParticleColumn};
+use crate::arrays::{column, dict, rows};
+use crate::convert::dict_to_toml;
+use crate::errors::run_error;
+use crate::threads;
+use flexdem_run::{NoObserver, Run, RunError, RunLength, RunOptions, Stop};
+use flexdem_scene::{load_scene, parse_scene, Scene};
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::{PyBool, PyDict};
+use std::path::PathBuf;
+use std::sync::{Mutex, MutexGuard};
+
+/// Steps between two checks for Ctrl-C when a run has no callback.
+const SIGNAL_CHECK_STEPS: u64 = 1000;
+
+/// A simulation: a scene set up for running, with its output and checkpoints.
+///
+/// Build one with `Simulation.from_scene(path)`, `Simulation.from_toml(text)`,
+/// `Simulation.from_dict(dict)` or `Simulation.resume(checkpoint)`; step it with `run` or
+/// `step`; read its state as numpy arrays (`positions`, `contacts()`, `energy()`, ...).
+#[pyclass(name = "Simulation", module = "flexdem", frozen)]
+pub struct PySimulation {
+    /// The run; locked by each call (the stepping releases the GIL, not the run).
+    run: Mutex<Run>,
+}
+
+/// Where the output goes, from the `output` argument: None/False nothing, True the scene's
+/// folder, a path that folder.
+fn output_options(output: Option<&Bound<'_, PyAny>>) -> PyResult<RunOptions> {
+    let mut options = RunOptions { no_output: true, ..RunOptions::default() };
+    let Some(output) = output else { return Ok(options) };
+    if output.is_none() {
+        return Ok(options);
+    }
+    if let Ok(b) = output.cast::<PyBool>() {
+        options.no_output = !b.is_true();
+        return Ok(options);
+    }
+    let folder: PathBuf = output.extract().map_err(|_| {
+        PyValueError::new_err("output: give None, False, True (the scene's folder) or a folder")
+    })?;
+    options.no_output = false;
+    options.output_directory = Some(folder);
+    Ok(options)
+}
+
+impl PySimulation {
+    /// The run, locked.
+    fn lock(&self) -> MutexGuard<'_, Run> {
+        self.run.lock().unwrap_or_else(|p| p.into_inner())
+    }
+
+    /// The simulation of `scene`, with the worker threads set up first.
+    fn build(
+        py: Python<'_>,
+        scene: Scene,
+        output: Option<&Bound<'_, PyAny>>,
+        threads: Option<usize>,
+    ) -> PyResult<PySimulation> {
+        let mut options = output_options(output)?;
+        threads::prepare(py, threads, scene.threads)?;
+        options.threads = threads;
+        let run = py.detach(|| Run::new(scene, options)).map_err(run_error)?;
+        Ok(PySimulation { run: Mutex::new(run) })
+    }
+
+    /// Advances `run` by up to `max_steps` on a rayon worker (the engine's parallel loops
+    /// then start there instead of being handed over from this thread each time), without
+    /// the GIL.
+    fn advance(&self, py: Python<'_>, max_steps: u64) -> Result<Stop, RunError> {
+        py.detach(|| {
+            let mut guard = self.lock();
+            let run: &mut Run = &mut guard;
+            rayon::join(|| run.advance(Some(max_steps), &mut NoObserver), || ()).0
+        })
+    }
+}
+
+/// The scene file's folder joined to `<string>`: the name errors give, and the folder
+/// relative paths start from.
+fn text_source(base_dir: Option<PathBuf>) -> PathBuf {
+    base_dir.unwrap_or_else(|| PathBuf::from(".")).join("<string>")
+}
+
+#[pymethods]
+impl PySimulation {
+    /// Reads the scene file at `path` and sets up its simulation.
+    ///
+    /// `output`: None or False writes nothing (the default), True the scene's `[output]`
+    /// into its folder, a folder the same output there. `threads`: the worker threads
+    /// (see `flexdem.set_threads`). Raises `flexdem.SceneError` (a ValueError) with the
+    /// command line's message when the scene is wrong.
+    #[staticmethod]
+    #[pyo3(signature = (path, *, output=None, threads=None))]
+    fn from_scene(
+        py: Python<'_>,
+        path: PathBuf,
+        output: Option<&Bound<'_, PyAny>>,
+        threads: Option<usize>,
+    ) -> PyResult<PySimulation> {
+        let scene = py.detach(|| load_scene(&path)).map_err(|e| run_error(e.into()))?;
+        PySimulation::build(py, scene, output, threads)
+    }
+
+    /// Sets up the simulation of a scene given as TOML text. Relative paths in it (meshes,
+    /// the output folder) start from `base_dir` (default: the current folder); errors name
+    /// the text `<string>`.
+    #[staticmethod]
+    #[pyo3(signature = (text, base_dir=None, *, output=None, threads=None))]
+    fn from_toml(
+        py: Python<'_>,
+        text: &str,
+        base_dir: Option<PathBuf>,
+        output: Option<&Bound<'_, PyAny>>,
+        threads: Option<usize>,
+    ) -> PyResult<PySimulation> {
+        let source = text_source(base_dir);
+        let scene = parse_scene(text, &source).map_err(|e| run_error(e.into()))?;
+        PySimulation::build(py, scene, output, threads)
+    }
+
+    /// Sets up the simulation of a scene given as a dict with the keys of a scene file
+    /// (`{"simulation": {...}, "materials": {...}, "structures": [...], ...}`): it is
+    /// written as TOML (`flexdem.to_toml`) and read as a file is, with the same checks;
+    /// line numbers in errors are those of that text.
+    #[staticmethod]
+    #[pyo3(signature = (scene, base_dir=None, *, output=None, threads=None))]
+    fn from_dict(
+        py: Python<'_>,
+        scene: &Bound<'_, PyAny>,
+        base_dir: Option<PathBuf>,
+        output: Option<&Bound<'_, PyAny>>,
+        threads: Option<usize>,
+    ) -> PyResult<PySimulation> {
+        let text = dict_to_toml(scene)?;
+        PySimulation::from_toml(py, &text, base_dir, output, threads)
+    }
+
+    /// Resumes the checkpoint at `path` (written by `save_checkpoint` or by `flexdem run`):
+    /// the simulation continues bit-identically. `output`: False/None writes nothing, True
+    /// continues the checkpointed run's output.
+    #[staticmethod]
+    #[pyo3(signature = (path, *, output=false, threads=None))]
+    fn resume(
+        py: Python<'_>,
+        path: PathBuf,
+        output: bool,
+        threads: Option<usize>,
+    ) -> PyResult<PySimulation> {
+        if let Some(n) = threads {
+            threads::set(n)?;
+        }
+        let options = RunOptions { no_output: !output, threads, ..RunOptions::default() };
+        let run = py.detach(|| Run::resume(&path, options)).map_err(run_error)?;
+        Ok(PySimulation { run: Mutex::new(run) })
+    }
+
+    /// Runs `steps` steps, or `duration` seconds of simulated time, or (neither given) to
+    /// the scene's run length; returns the number of steps done. `callback(sim)` is called
+    /// every `every` steps and at the end; it stops the run by returning False (or by
+    /// raising, which propagates). The GIL is released while the engine steps.
+    #[pyo3(signature = (steps=None, duration=None, callback=None, every=100))]
+    fn run(
+        slf: &Bound<'_, Self>,
+        steps: Option<u64>,
+        duration: Option<f64>,
+        callback: Option<Bound<'_, PyAny>>,
+        every: u64,
+    ) -> PyResult<u64> {
+        let py = slf.py();
+        let this = slf.get();
+        if steps.is_some() && duration.is_some() {
+            return Err(PyValueError::new_err("give steps or duration, not both"));
+        }
+        if every == 0 {
+            return Err(PyValueError::new_err("every must be at least 1"));
+        }
+        if let Some(d) = duration {
+            if !(d >= 0.0 && d.is_finite()) {
+                return Err(PyValueError::new_err(format!("duration = {d}: give a time ≥ 0 s")));
+            }
+        }
+        let (scene_target, start) = {
+            let mut run = this.lock();
+            let scene_target = run.target();
+            let (steps_now, time_now) = (run.sim().steps(), run.sim().time());
+            match (steps, duration) {
+                (Some(n), _) => run.set_target(RunLength::Steps(steps_now.saturating_add(n))),
+                (_, Some(d)) => run.set_target(RunLength::Duration(time_now + d)),
+                _ => {}
+            }
+            (scene_target, steps_now)
+        };
+        let chunk = if callback.is_some() { every } else { SIGNAL_CHECK_STEPS };
+        let result = (|| -> PyResult<()> {
+            loop {
+                let stop = this.advance(py, chunk).map_err(run_error)?;
+                if let Some(f) = &callback {
+                    let answer = f.call1((slf,))?;
+                    if answer.cast::<PyBool>().is_ok_and(|b| !b.is_true()) {
+                        return Ok(());
+                    }
+                } else {
+                    py.check_signals()?;
+                }
+                if stop != Stop::StepLimit {
+                    return Ok(());
+                }
+            }
+        })();
+        let mut run = this.lock();
+        // the scene's run length again: what later checkpoints store
+        run.set_target(scene_target);
+        let done = run.sim().steps() - start;
+        result.map(|()| done)
+    }
+
+    /// One step.
+    fn step(slf: &Bound<'_, Self>) -> PyResult<()> {
+        PySimulation::run(slf, Some(1), None, None, 1).map(|_| ())
+    }
+
+    /// Writes a checkpoint of the current state to `path` (the command line's format:
+    /// `flexdem resume` continues it too).
+    fn save_checkpoint(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
+        py.detach(|| {
+            let mut run = self.lock();
+            run.set_checkpoint_path(&path);
+            run.save_checkpoint()
+        })
+        .map_err(run_error)
+    }
+
+    /// Ends the run: writes the last output frame and row, the `.pvd` file and the plot (as
+    /// the command line does at the end of a run) and returns the run's summary as a dict
+    /// (what `flexdem run --summary` writes as JSON).
+    fn finish<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let json = py
+            .detach(|| {
+                let mut run = self.lock();
+                let summary = run.finish(&mut NoObserver)?;
+                serde_json::to_string(&summary).map_err(|e| RunError::Summary(e.to_string()))
+            })
+            .map_err(run_error)?;
+        py.import("json")?.call_method1("loads", (json,))
+    }
+
+    /// Simulated time (s).
+    #[getter]
+    fn time(&self) -> f64 {
+        self.lock().sim().time()
+    }
+
+    /// Steps done since the start of the simulation.
+    #[getter]
+    fn steps(&self) -> u64 {
+        self.lock().sim().steps()
+    }
+
+    /// The current time step (s).
+    #[getter]
+    fn dt(&self) -> f64 {
+        self.lock().sim().dt()
+    }
+
+    /// The critical time step at the last estimate (s).
+    #[getter]
+    fn critical_dt(&self) -> f64 {
+        self.lock().sim().critical_dt()
+    }
+
+    /// Whether the scene's run length (`steps` or `duration`) is reached.
+    #[getter]
+    fn done(&self) -> bool {
+        self.lock().is_done()
+    }
+
+    /// Number of particles (free spheres and structure nodes).
+    #[getter]
+    fn particle_count(&self) -> usize {
+        access::particle_count(self.lock().sim())
+    }
+
+    /// Warnings raised by the engine so far.
+    #[getter]
+    fn warnings(&self) -> Vec<String> {
+        self.lock().sim().warnings().to_vec()
+    }
+
+    /// The scene file the simulation came from.
+    #[getter]
+    fn scene_file(&self) -> PathBuf {
+        self.lock().scene_file().to_path_buf()
+    }
+
+    /// The output folder (written only when the simulation was set up with `output`).
+    #[getter]
+    fn output_directory(&self) -> PathBuf {
+        self.lock().output_settings().directory.clone()
+    }
+
+    /// Particle centres, n×3 (m).
+    #[getter]
+    fn positions<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        self.vectors(py, ParticleColumn::Positions)
+    }
+
+    /// Particle velocities, n×3 (m/s).
+    #[getter]
+    fn velocities<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        self.vectors(py, ParticleColumn::Velocities)
+    }
+
+    /// Particle angular velocities, n×3 (rad/s).
+    #[getter]
+    fn angular_velocities<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        self.vectors(py, ParticleColumn::AngularVelocities)
+    }
+
+    /// Total force on each particle at the last step, n×3 (N); zero before the first step.
+    #[getter]
+    fn forces<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        self.vectors(py, ParticleColumn::Forces)
+    }
+
+    /// Particle radii, n (m).
+    #[getter]
+    fn radii<'py>(&self, py: Python<'py>) -> Bound<'py, PyAny> {
+        column(py, access::radii(self.lock().sim()))
+    }
+
+    /// Particle masses, n (kg).
+    #[getter]
+    fn masses<'py>(&self, py: Python<'py>) -> Bound<'py, PyAny> {
+        column(py, access::masses(self.lock().sim()))
+    }
+
+    /// The structure of each particle, n; −1 for a free sphere.
+    #[getter]
+    fn structures<'py>(&self, py: Python<'py>) -> Bound<'py, PyAny> {
+        column(py, access::structures(self.lock().sim()))
+    }
+
+    /// The contacts of the last step as a dict of arrays, one row per contact: `pairs`
+    /// (n×2, the feature ids of the two sites: particle, connection, PFacet or wall index),
+    /// `kinds` (n×2: 0 particle, 1 edge, 2 face, 3 wall, as the VTK output's `kind1`,
+    /// `kind2`), `points` (n×3), `normals` (n×3, body 1 → body 2), `normal_force` (n,
+    /// compression positive), `shear_force` and `force` (n×3, on body 2).
+    fn contacts<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let t = access::contacts(self.lock().sim());
+        dict(
+            py,
+            vec![
+                ("pairs", rows(py, t.features, 2)?),
+                ("kinds", rows(py, t.kinds, 2)?),
+                ("points", rows(py, t.points, 3)?),
+                ("normals", rows(py, t.normals, 3)?),
+                ("normal_force", column(py, t.normal_force)),
+                ("shear_force", rows(py, t.shear_force, 3)?),
+                ("force", rows(py, t.force, 3)?),
+            ],
+        )
+    }
+
+    /// The beam links (one per connection) as a dict of arrays, one row per link: `nodes`
+    /// (m×2 particle ids), `status` (m: 0 cohesive, 1 frictional, 2 broken),
+    /// `normal_force` (m, compression positive), `shear_force` and `force` (m×3, on node
+    /// 2); forces are zero before the first step.
+    fn links<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let t = access::links(self.lock().sim());
+        dict(
+            py,
+            vec![
+                ("nodes", rows(py, t.nodes, 2)?),
+                ("status", column(py, t.status)),
+                ("normal_force", column(py, t.normal_force)),
+                ("shear_force", rows(py, t.shear_force, 3)?),
+                ("force", rows(py, t.force, 3)?),
+            ],
+        )
+    }
+
+    /// The energy terms (J) as a dict: every term of the engine's energy account
+    /// (`kinetic_translation`, `elastic_links`, `gravity_work`, `friction`, ...), then
+    /// `stored`, `put_in`, `taken_out`, `balance` (constant when the balance closes),
+    /// `initial_balance`, `scale` and `relative_balance_error`.
+    fn energy<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let terms = access::energy(self.lock().sim());
+        let d = PyDict::new(py);
+        for (k, v) in terms {
+            d.set_item(k, v)?;
+        }
+        Ok(d)
+    }
+
+    fn __repr__(&self) -> String {
+        let run = self.lock();
+        let sim = run.sim();
+        format!(
+            "<flexdem.Simulation of {}: {} particles, step {}, t = {:.6e} s>",
+            run.scene_file().display(),
+            access::particle_count(sim),
+            sim.steps(),
+            sim.time()
+        )
+    }
+}
+
+impl PySimulation {
+    /// One particle column as an n×3 array.
+    fn vectors<'py>(&self, py: Python<'py>, c: ParticleColumn) -> PyResult<Bound<'py, PyAny>> {
+        rows(py, access::particle_vectors(self.lock().sim(), c), 3)
+    }
+}
