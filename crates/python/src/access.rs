@@ -30,12 +30,12 @@ pub(crate) enum ParticleColumn {
 
 /// Number of particles (free spheres and structure nodes).
 pub(crate) fn particle_count(sim: &Simulation) -> usize {
-    sim.model.particles.len()
+    sim.model().particles.len()
 }
 
 /// One vector per particle, flat (see [`flat`]).
 pub(crate) fn particle_vectors(sim: &Simulation, column: ParticleColumn) -> Vec<Real> {
-    let p = &sim.model.particles;
+    let p = &sim.model().particles;
     match column {
         ParticleColumn::Positions => flat(&p.pos),
         ParticleColumn::Velocities => flat(&p.vel),
@@ -54,18 +54,18 @@ pub(crate) fn particle_vectors(sim: &Simulation, column: ParticleColumn) -> Vec<
 
 /// Radii of the particles (m).
 pub(crate) fn radii(sim: &Simulation) -> Vec<Real> {
-    sim.model.particles.radius.clone()
+    sim.model().particles.radius.clone()
 }
 
 /// Masses of the particles (kg).
 pub(crate) fn masses(sim: &Simulation) -> Vec<Real> {
-    sim.model.particles.mass.clone()
+    sim.model().particles.mass.clone()
 }
 
 /// Structure of each particle, −1 for a free sphere (as in the VTK output).
 pub(crate) fn structures(sim: &Simulation) -> Vec<i64> {
     let none = flexdem_elements::NO_STRUCTURE;
-    sim.model.particles.structure.iter().map(|&s| if s == none { -1 } else { s as i64 }).collect()
+    sim.model().particles.structure.iter().map(|&s| if s == none { -1 } else { s as i64 }).collect()
 }
 
 /// The contacts of the last step, one row each.
@@ -101,7 +101,7 @@ fn feature(site: &Site) -> (i64, i8) {
 
 /// The contacts of the last step.
 pub(crate) fn contacts(sim: &Simulation) -> ContactTable {
-    let list = &sim.contacts.list;
+    let list = sim.contacts();
     let mut t = ContactTable::default();
     for c in list {
         let (f1, k1) = feature(&c.site1);
@@ -137,7 +137,7 @@ pub(crate) struct LinkTable {
 
 /// The links and their forces of the last step (zero before the first step).
 pub(crate) fn links(sim: &Simulation) -> LinkTable {
-    let links = &sim.links;
+    let links = sim.links();
     let count = links.nodes.len();
     let mut t = LinkTable {
         nodes: links.nodes.iter().flat_map(|n| n.map(i64::from)).collect(),
