@@ -191,6 +191,30 @@ pub(crate) fn energy(sim: &Simulation) -> Vec<(String, Real)> {
     terms
 }
 
+/// A change a script makes between stages of a run, through the engine's setters (which
+/// check the values and keep the simulation's caches right).
+pub(crate) enum Change {
+    /// Cundall damping coefficient.
+    Damping(Real),
+    /// Gravity vector (m/s²).
+    Gravity(Vec3),
+    /// Velocity of a wall (m/s).
+    WallVelocity(u32, Vec3),
+    /// Imposed velocity of particles (m/s): their translations are blocked and driven.
+    ImposedVelocity(Vec<u32>, Vec3),
+}
+
+/// Applies `change` to `sim`; the engine's message when it refuses it.
+pub(crate) fn apply(sim: &mut Simulation, change: Change) -> Result<(), String> {
+    match change {
+        Change::Damping(d) => sim.set_damping(d),
+        Change::Gravity(g) => sim.set_gravity(g),
+        Change::WallVelocity(w, v) => sim.set_wall_velocity(w, v),
+        Change::ImposedVelocity(particles, v) => sim.impose_velocity(particles, v),
+    }
+    .map_err(|e| e.to_string())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -396,6 +396,28 @@ impl PySimulation {
         Ok(d)
     }
 
+    /// Sets the Cundall damping coefficient (0 ≤ d < 1) for the rest of the run. Raises
+    /// ValueError with the engine's message when it is refused.
+    fn set_damping(&self, damping: f64) -> PyResult<()> {
+        self.change(access::Change::Damping(damping))
+    }
+
+    /// Sets gravity `[gx, gy, gz]` (m/s²) for the rest of the run.
+    fn set_gravity(&self, gravity: [f64; 3]) -> PyResult<()> {
+        self.change(access::Change::Gravity(gravity.into()))
+    }
+
+    /// Sets the velocity `[vx, vy, vz]` (m/s) of wall `wall` (its index in the scene).
+    fn set_wall_velocity(&self, wall: u32, velocity: [f64; 3]) -> PyResult<()> {
+        self.change(access::Change::WallVelocity(wall, velocity.into()))
+    }
+
+    /// Imposes the velocity `[vx, vy, vz]` (m/s) on `particles` (their translations are
+    /// driven; the supports' work enters the energy balance as `boundary_work`).
+    fn impose_velocity(&self, particles: Vec<u32>, velocity: [f64; 3]) -> PyResult<()> {
+        self.change(access::Change::ImposedVelocity(particles, velocity.into()))
+    }
+
     fn __repr__(&self) -> String {
         let run = self.lock();
         let sim = run.sim();
@@ -410,6 +432,11 @@ impl PySimulation {
 }
 
 impl PySimulation {
+    /// Applies a change between stages; the engine's refusal as a ValueError.
+    fn change(&self, change: access::Change) -> PyResult<()> {
+        access::apply(self.lock().sim_mut(), change).map_err(PyValueError::new_err)
+    }
+
     /// One particle column as an n×3 array.
     fn vectors<'py>(&self, py: Python<'py>, c: ParticleColumn) -> PyResult<Bound<'py, PyAny>> {
         rows(py, access::particle_vectors(self.lock().sim(), c), 3)

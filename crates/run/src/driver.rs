@@ -221,6 +221,13 @@ impl Run {
         &self.sim
     }
 
+    /// The simulation, to change between stages of a run (a script's new loads, damping,
+    /// wall or imposed velocities): through `Simulation`'s setters and `edit_model`, which
+    /// keep its caches right.
+    pub fn sim_mut(&mut self) -> &mut Simulation {
+        &mut self.sim
+    }
+
     /// The simulation, given back when the run is over.
     pub fn into_simulation(self) -> Simulation {
         self.sim
