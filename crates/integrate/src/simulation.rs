@@ -300,9 +300,10 @@ impl Simulation {
     /// Changes the model with `edit` (block DOFs, add bodies, change masks, ...), then checks
     /// it as [`Simulation::new`] does and rebuilds what depends on it: the pipeline
     /// (collider, adjacency, contact buffers), the links when the connections changed (made
-    /// anew at rest in the current configuration), and the time step. When the particles,
-    /// connections, PFacets or walls changed, the contacts end (their friction stays counted
-    /// as dissipated) and are found again at the next step. A model that fails the checks is
+    /// anew at rest in the current configuration: the elastic energy the old ones held goes
+    /// to `links_dissipated`), and the time step. When the particles, connections, PFacets or
+    /// walls changed, the contacts end (their friction stays counted as dissipated, their
+    /// elastic energy goes to `contact_releases`) and are found again at the next step. A model that fails the checks is
     /// put back as it was; an error of the time step estimate (no stiffness anywhere) comes
     /// after the change. Costs a copy of the model: for velocities, positions and walls use
     /// the setters.
@@ -317,7 +318,12 @@ impl Simulation {
             return Err(e);
         }
         let model = &self.state.model;
+        let terms = &mut self.state.energy.terms;
         if model.connections != before.connections {
+            // links made anew at rest: the elastic energy the old ones held leaves the
+            // system, as a breakage's does
+            terms.links_dissipated += terms.elastic_links;
+            terms.elastic_links = 0.0;
             self.state.links = Links::from_model(model, self.state.settings.link_mode);
         }
         let same_topology = model.particles.len() == before.particles.len()
@@ -325,7 +331,10 @@ impl Simulation {
             && same_faces(&model.pfacets, &before.pfacets)
             && model.walls.len() == before.walls.len();
         if !same_topology {
+            // contacts ended while holding elastic energy give it up (`contact_releases`)
             let contacts = &mut self.state.contacts;
+            terms.contact_releases += terms.elastic_contacts;
+            terms.elastic_contacts = 0.0;
             contacts.ended_dissipation = contacts.dissipated();
             contacts.list.clear();
         }

@@ -97,6 +97,34 @@ fn a_model_edit_rebuilds_the_pipeline_or_changes_nothing() {
     sim.run(5).unwrap();
 }
 
+/// A model edit that ends the contacts (new bodies) and remakes the links (new connections)
+/// books the elastic energy they held as released (`contact_releases`, `links_dissipated`):
+/// the energy balance is the same just before and just after the edit. (What follows is not
+/// right yet: the ended contacts are found again at the next step with their full overlap,
+/// and the run gains energy beyond the births it books; see the issue-12 note.)
+#[test]
+fn a_model_edit_that_ends_contacts_and_links_keeps_the_balance() {
+    let mut sim = scene();
+    // the sphere pressed on the wall, the chain sagging under gravity
+    while sim.contacts().is_empty() {
+        sim.step().unwrap();
+    }
+    sim.run(50).unwrap();
+    let e = *sim.energy();
+    assert!(e.elastic_contacts > 0.0 && e.elastic_links > 0.0, "{e:?}");
+    let balance = e.balance();
+    let mat = sim.model().particles.material[0];
+    sim.edit_model(|m| {
+        let points = straight_line(Vec3::new(0.0, 3.0, 1.0), Vec3::new(1.0, 3.0, 1.0), 2).unwrap();
+        chain(m, &points, &StructureOptions::new("new", 0.01, mat)).unwrap();
+    })
+    .unwrap();
+    let after = *sim.energy();
+    assert_eq!(after.contact_releases, e.contact_releases + e.elastic_contacts);
+    assert_eq!(after.links_dissipated, e.links_dissipated + e.elastic_links);
+    assert!((after.balance() - balance).abs() <= 1e-12 * balance.abs().max(e.stored()));
+}
+
 #[test]
 fn settings_changes_are_checked_and_rebuild_what_depends_on_them() {
     let mut sim = scene();
