@@ -65,12 +65,9 @@ pub struct Output {
 }
 
 impl Output {
-    /// Checks the settings against `sim`, creates the output folder and, when series are
-    /// recorded, writes the CSV header.
-    pub fn new(settings: &OutputSettings, sim: &Simulation) -> Result<Output, OutputError> {
-        check_settings(settings, sim)?;
-        files::create_directory(&settings.directory)?;
-        let mut output = Output {
+    /// An output with nothing written yet.
+    fn empty(settings: &OutputSettings) -> Output {
+        Output {
             settings: settings.clone(),
             pvd_entries: Vec::new(),
             frames: Vec::new(),
@@ -80,7 +77,15 @@ impl Output {
             rows: Vec::new(),
             files: Vec::new(),
             noted: HashSet::new(),
-        };
+        }
+    }
+
+    /// Checks the settings against `sim`, creates the output folder and, when series are
+    /// recorded, writes the CSV header.
+    pub fn new(settings: &OutputSettings, sim: &Simulation) -> Result<Output, OutputError> {
+        check_settings(settings, sim)?;
+        files::create_directory(&settings.directory)?;
+        let mut output = Output::empty(settings);
         if settings.series_every.is_some() {
             let path = settings.directory.join(CSV_FILE);
             let csv = CsvSeries::create(&path, &header_columns(&settings.series))?;
@@ -102,17 +107,7 @@ impl Output {
     ) -> Result<Output, OutputError> {
         check_settings(settings, sim)?;
         files::create_directory(&settings.directory)?;
-        let mut output = Output {
-            settings: settings.clone(),
-            pvd_entries: Vec::new(),
-            frames: Vec::new(),
-            last_frame_step: None,
-            last_row_step: None,
-            csv: None,
-            rows: Vec::new(),
-            files: Vec::new(),
-            noted: HashSet::new(),
-        };
+        let mut output = Output::empty(settings);
         for &(step, time) in &progress.vtk_frames {
             for (part, name) in PARTS.iter().enumerate() {
                 let file = frame_file_name(name, step);
