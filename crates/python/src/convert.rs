@@ -6,9 +6,13 @@ use crate::errors::SceneError;
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
 
+/// Nesting deeper than this is refused: a scene is a few levels deep, and a dict that
+/// contains itself would otherwise recurse until the stack overflows.
+const MAX_DEPTH: usize = 64;
+
 /// `obj` (a dict) as a TOML table; errors name the key (`structures[0].radius`).
 pub(crate) fn dict_to_table(obj: &Bound<'_, PyAny>) -> PyResult<toml::Table> {
-    match to_value(obj, "")? {
+    match to_value(obj, "", 0)? {
         toml::Value::Table(table) => Ok(table),
         _ => Err(SceneError::new_err(format!(
             "a scene is a dict of tables (`simulation`, `materials`, ...), not a {}",
@@ -38,11 +42,16 @@ fn child(path: &str, key: &str) -> String {
 }
 
 /// `obj` (at `path` in the dict) as a TOML value.
-fn to_value(obj: &Bound<'_, PyAny>, path: &str) -> PyResult<toml::Value> {
+fn to_value(obj: &Bound<'_, PyAny>, path: &str, depth: usize) -> PyResult<toml::Value> {
     let at = |message: String| {
         let key = if path.is_empty() { "the scene" } else { path };
         SceneError::new_err(format!("`{key}`: {message}"))
     };
+    if depth > MAX_DEPTH {
+        return Err(at(format!(
+            "nested more than {MAX_DEPTH} levels deep (a dict or list that contains itself?)"
+        )));
+    }
     // bool before int: Python's bool is an int
     if let Ok(b) = obj.cast::<PyBool>() {
         return Ok(toml::Value::Boolean(b.is_true()));
@@ -64,7 +73,7 @@ fn to_value(obj: &Bound<'_, PyAny>, path: &str) -> PyResult<toml::Value> {
                 Ok(s) => s.extract::<String>()?,
                 Err(_) => return Err(at(format!("keys must be strings, not {}", type_name(&k)))),
             };
-            let value = to_value(&v, &child(path, &key))?;
+            let value = to_value(&v, &child(path, &key), depth + 1)?;
             table.insert(key, value);
         }
         return Ok(toml::Value::Table(table));
@@ -72,7 +81,7 @@ fn to_value(obj: &Bound<'_, PyAny>, path: &str) -> PyResult<toml::Value> {
     if obj.cast::<PyList>().is_ok() || obj.cast::<PyTuple>().is_ok() {
         let mut items = Vec::new();
         for (i, item) in obj.try_iter()?.enumerate() {
-            items.push(to_value(&item?, &format!("{path}[{i}]"))?);
+            items.push(to_value(&item?, &format!("{path}[{i}]"), depth + 1)?);
         }
         return Ok(toml::Value::Array(items));
     }
@@ -81,11 +90,11 @@ fn to_value(obj: &Bound<'_, PyAny>, path: &str) -> PyResult<toml::Value> {
     }
     // numpy arrays and scalars: their Python values
     if obj.hasattr("tolist")? {
-        return to_value(&obj.call_method0("tolist")?, path);
+        return to_value(&obj.call_method0("tolist")?, path, depth + 1);
     }
     // paths (pathlib.Path, os.PathLike)
     if obj.hasattr("__fspath__")? {
-        return to_value(&obj.call_method0("__fspath__")?, path);
+        return to_value(&obj.call_method0("__fspath__")?, path, depth + 1);
     }
     Err(at(format!(
         "a {} has no TOML value (use str, int, float, bool, list or dict)",

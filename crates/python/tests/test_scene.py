@@ -112,3 +112,14 @@ def test_relative_paths_start_from_base_dir(cantilever_text):
     text = cantilever_text + '\n[output]\ndirectory = "out"\n'
     sim = flexdem.Simulation.from_toml(text, base_dir=pathlib.Path("/tmp/somewhere"))
     assert sim.output_directory == pathlib.Path("/tmp/somewhere/out")
+
+
+def test_a_dict_that_contains_itself_is_a_scene_error_not_a_crash():
+    d = cantilever_dict()
+    d["simulation"]["loop"] = d  # a cycle
+    with pytest.raises(flexdem.SceneError, match="nested more than"):
+        flexdem.Simulation.from_dict(d)
+    looped = []
+    looped.append(looped)
+    with pytest.raises(flexdem.SceneError, match="nested more than"):
+        flexdem.Simulation.from_dict({"simulation": {"x": looped}})
