@@ -249,7 +249,17 @@ pub(crate) struct BoxSpec {
     pub max: S<V3>,
 }
 
-/// `[[spheres]]`: one sphere, a lattice or a random packing.
+/// A cylinder `{ base = [..], axis = [..], radius, height }`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct CylinderSpec {
+    pub base: S<V3>,
+    pub axis: S<V3>,
+    pub radius: S<f64>,
+    pub height: S<f64>,
+}
+
+/// `[[spheres]]`: one sphere, a lattice, a random or dense packing, or spheres from a file.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct SpheresSpec {
@@ -264,6 +274,14 @@ pub(crate) struct SpheresSpec {
     pub spacing: Option<S<f64>>,
     pub count: Option<S<i64>>,
     pub seed: Option<S<i64>>,
+    // dense
+    pub cylinder: Option<S<CylinderSpec>>,
+    pub inside: Option<S<String>>,
+    pub solid_fraction: Option<S<f64>>,
+    pub tolerance: Option<S<f64>>,
+    pub max_iterations: Option<S<i64>>,
+    // file
+    pub file: Option<S<String>>,
     pub velocity: Option<S<V3>>,
     pub angular_velocity: Option<S<V3>>,
     pub mask: Option<S<i64>>,
