@@ -53,21 +53,24 @@ pub struct OutputSettings {
 }
 
 /// Names of the energy columns, in the order of [`energy_values`].
-const ENERGY_TERMS: [&str; 10] = [
+const ENERGY_TERMS: [&str; 13] = [
     "kinetic_translation",
     "kinetic_rotation",
     "elastic_links",
     "elastic_contacts",
     "gravity_work",
     "load_work",
+    "boundary_work",
+    "contact_births",
     "damping",
     "links_dissipated",
     "friction",
+    "contact_releases",
     "balance",
 ];
 
 /// The energy terms of a simulation in the order of [`ENERGY_TERMS`] (J).
-fn energy_values(sim: &Simulation) -> [Real; 10] {
+fn energy_values(sim: &Simulation) -> [Real; 13] {
     let e = sim.energy();
     [
         e.kinetic_translation,
@@ -76,9 +79,12 @@ fn energy_values(sim: &Simulation) -> [Real; 10] {
         e.elastic_contacts,
         e.gravity_work,
         e.load_work,
+        e.boundary_work,
+        e.contact_births,
         e.damping,
         e.links_dissipated,
         e.friction,
+        e.contact_releases,
         e.balance(),
     ]
 }

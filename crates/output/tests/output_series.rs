@@ -62,9 +62,12 @@ fn expected_row(sim: &Simulation) -> Vec<Real> {
         e.elastic_contacts,
         e.gravity_work,
         e.load_work,
+        e.boundary_work,
+        e.contact_births,
         e.damping,
         e.links_dissipated,
         e.friction,
+        e.contact_releases,
         e.balance(),
     ]);
     row.extend_from_slice(&[f.x, f.y, f.z, sim.contacts().len() as Real, 0.0]);
@@ -126,9 +129,12 @@ fn csv_rows_hold_the_simulation_values_and_the_plot_is_a_png() {
         "elastic_contacts",
         "gravity_work",
         "load_work",
+        "boundary_work",
+        "contact_births",
         "damping",
         "links_dissipated",
         "friction",
+        "contact_releases",
         "balance",
     ];
     let mut want = vec!["time_s".to_string(), "step".into()];
