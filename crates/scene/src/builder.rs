@@ -3,7 +3,6 @@
 
 use crate::built::SceneNames;
 use crate::error::Ctx;
-use crate::selection::Selector;
 use flexdem_elements::{MaterialId, Model};
 use std::path::PathBuf;
 
@@ -18,11 +17,4 @@ pub(crate) struct Builder<'a> {
     pub names: SceneNames,
     /// The memory available to the simulation (bytes), if known.
     pub available: Option<u64>,
-}
-
-impl Builder<'_> {
-    /// Selections over the model built so far.
-    pub(crate) fn selector(&self) -> Selector<'_> {
-        Selector { ctx: self.ctx, model: &self.model, names: &self.names }
-    }
 }

@@ -31,6 +31,11 @@ fn sides(layout: Layout) -> &'static [&'static str] {
 }
 
 impl Builder<'_> {
+    /// Selections over the model built so far.
+    pub(crate) fn selector(&self) -> Selector<'_> {
+        Selector { ctx: self.ctx, model: &self.model, names: &self.names }
+    }
+
     /// The particle ids chosen by `sel` among the particles built so far
     /// ([`Selector::select`]).
     pub(crate) fn select(&self, sel: &S<SelectSpec>, key: &str) -> Result<Vec<u32>, SceneError> {
