@@ -1,7 +1,7 @@
 //! The state of a scene build, which the sections' readers (`build`, `structures`,
 //! `spheres`, `selection`, `output`) extend with their methods.
 
-use crate::built::{BuiltStructure, SphereGroup};
+use crate::built::SceneNames;
 use crate::error::Ctx;
 use flexdem_elements::{MaterialId, Model};
 use std::path::PathBuf;
@@ -13,8 +13,8 @@ pub(crate) struct Builder<'a> {
     pub dir: PathBuf,
     pub model: Model,
     pub materials: Vec<(String, MaterialId)>,
-    pub structures: Vec<BuiltStructure>,
-    pub groups: Vec<SphereGroup>,
+    /// The structures and sphere groups built so far, for selections.
+    pub names: SceneNames,
     /// The memory available to the simulation (bytes), if known.
     pub available: Option<u64>,
 }

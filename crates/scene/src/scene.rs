@@ -1,5 +1,6 @@
 //! [`Scene`]: what a scene file describes, ready for a simulation.
 
+use crate::built::SceneNames;
 use crate::run_length::RunLength;
 use flexdem_elements::Model;
 use flexdem_integrate::{Load, Settings};
@@ -19,6 +20,9 @@ pub struct Scene {
     pub settings: Settings,
     /// Imposed forces and moments, to add with `Simulation::add_load`.
     pub loads: Vec<Load>,
+    /// The structures and sphere groups by name, for selections after the build
+    /// ([`crate::parse_loads`]).
+    pub names: SceneNames,
     /// How long to run.
     pub run: RunLength,
     /// Number of worker threads (None: the machine's default).

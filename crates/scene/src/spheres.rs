@@ -84,7 +84,7 @@ impl Builder<'_> {
         }
         let name = sp.name.as_ref().map(|n| (n.get_ref().clone(), n.span()));
         if let Some((n, span)) = &name {
-            if self.groups.iter().any(|g| g.name == *n) {
+            if self.names.groups.iter().any(|g| g.name == *n) {
                 return Err(ctx.at(
                     span.clone(),
                     &key("name"),
@@ -165,7 +165,7 @@ impl Builder<'_> {
         }
         let end = self.model.particles.len() as u32;
         if let Some((name, _)) = name {
-            self.groups.push(SphereGroup { name, particles: first..end });
+            self.names.groups.push(SphereGroup { name, particles: first..end });
         }
         Ok(())
     }
