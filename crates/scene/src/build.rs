@@ -7,7 +7,7 @@ use crate::error::{unknown_name, Ctx, SceneError};
 use crate::run_length::{check_step_count, RunLength};
 use crate::scene::{Scene, MAX_THREADS};
 use crate::schema::{
-    BoundarySpec, Dt, LoadSpec, MaterialSpec, SceneFile, SimulationSpec, Tolerance, WallSpec, S,
+    BoundarySpec, Dt, LoadSpec, MaterialSpec, SceneFile, SimulationSpec, Tolerance, S,
 };
 use flexdem_contact::{FailureMode, LinkKinematicsMode, Material};
 use flexdem_elements::{Dofs, MaterialId, Model};
@@ -26,6 +26,7 @@ pub(crate) fn build(file: SceneFile, ctx: Ctx<'_>, source: &Path) -> Result<Scen
         materials: Vec::new(),
         structures: Vec::new(),
         groups: Vec::new(),
+        wall_controls: Vec::new(),
         available: crate::memory::available_memory(),
     };
     let (settings, run, threads) = b.simulation(&file.simulation)?;
@@ -74,6 +75,7 @@ pub(crate) fn build(file: SceneFile, ctx: Ctx<'_>, source: &Path) -> Result<Scen
         model: b.model,
         settings,
         loads,
+        wall_controls: b.wall_controls,
         run,
         threads,
         output,
@@ -301,26 +303,6 @@ impl Builder<'_> {
             .add_material(material)
             .map_err(|e| ctx.at(spec.span(), &format!("materials.{n}"), e.to_string()))?;
         self.materials.push((n.clone(), id));
-        Ok(())
-    }
-
-    fn add_wall(&mut self, spec: &S<WallSpec>) -> Result<(), SceneError> {
-        let ctx = self.ctx;
-        let w = spec.get_ref();
-        let point = ctx.vec3(&w.point, "walls.point", "m")?;
-        let normal = ctx.direction(&w.normal, "walls.normal")?;
-        let material = self.material(&w.material, "walls.material")?;
-        let velocity = w
-            .velocity
-            .as_ref()
-            .map_or(Ok(Vec3::zeros()), |v| ctx.vec3(v, "walls.velocity", "m/s"))?;
-        let mask = ctx.mask(w.mask.as_ref(), "walls.mask")?;
-        let id = self
-            .model
-            .add_wall(point, normal, material)
-            .map_err(|e| ctx.at(spec.span(), "walls", e.to_string()))? as usize;
-        self.model.walls[id].velocity = velocity;
-        self.model.walls[id].mask = mask;
         Ok(())
     }
 

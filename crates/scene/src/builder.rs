@@ -4,6 +4,7 @@
 use crate::built::{BuiltStructure, SphereGroup};
 use crate::error::Ctx;
 use flexdem_elements::{MaterialId, Model};
+use flexdem_integrate::WallControl;
 use std::path::PathBuf;
 
 /// The state of a build: the model so far and the names defined.
@@ -15,6 +16,8 @@ pub(crate) struct Builder<'a> {
     pub materials: Vec<(String, MaterialId)>,
     pub structures: Vec<BuiltStructure>,
     pub groups: Vec<SphereGroup>,
+    /// How each wall built so far moves.
+    pub wall_controls: Vec<WallControl>,
     /// The memory available to the simulation (bytes), if known.
     pub available: Option<u64>,
 }

@@ -14,6 +14,7 @@ mod check;
 mod error;
 pub mod memory;
 mod output;
+mod output_measures;
 pub mod packing;
 pub mod placement;
 mod read;
@@ -23,6 +24,7 @@ mod schema;
 mod selection;
 mod spheres;
 mod structures;
+mod walls;
 
 pub use error::SceneError;
 pub use read::{load_scene, parse_scene};

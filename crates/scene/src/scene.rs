@@ -2,7 +2,7 @@
 
 use crate::run_length::RunLength;
 use flexdem_elements::Model;
-use flexdem_integrate::{Load, Settings};
+use flexdem_integrate::{Load, Settings, WallControl};
 use flexdem_output::OutputSettings;
 use std::path::PathBuf;
 
@@ -19,6 +19,9 @@ pub struct Scene {
     pub settings: Settings,
     /// Imposed forces and moments, to add with `Simulation::add_load`.
     pub loads: Vec<Load>,
+    /// How each wall moves (one per wall of the model), to set with
+    /// `Simulation::set_wall_control`.
+    pub wall_controls: Vec<WallControl>,
     /// How long to run.
     pub run: RunLength,
     /// Number of worker threads (None: the machine's default).

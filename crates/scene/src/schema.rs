@@ -277,7 +277,18 @@ pub(crate) struct WallSpec {
     pub normal: S<V3>,
     pub material: S<String>,
     pub velocity: Option<S<V3>>,
+    pub servo: Option<S<ServoSpec>>,
     pub mask: Option<S<i64>>,
+}
+
+/// `servo = { stress, area, gain, max_speed }` of a wall.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct ServoSpec {
+    pub stress: S<f64>,
+    pub area: S<f64>,
+    pub gain: Option<S<f64>>,
+    pub max_speed: S<f64>,
 }
 
 /// A plane `{ point, normal, tolerance }`.
@@ -350,4 +361,22 @@ pub(crate) struct SeriesSpecToml {
     pub name: S<String>,
     pub quantity: S<String>,
     pub of: Option<S<SelectSpec>>,
+    // wall_force, wall_stress
+    pub wall: Option<S<i64>>,
+    pub area: Option<S<f64>>,
+    // stress, solid_fraction
+    #[serde(rename = "box")]
+    pub region: Option<S<BoxSpec>>,
+    pub cylinder: Option<S<CylinderSpec>>,
+    pub volume: Option<S<f64>>,
+}
+
+/// A solid cylinder `{ start, axis, radius, length }`, placed as a `tube`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct CylinderSpec {
+    pub start: S<V3>,
+    pub axis: S<V3>,
+    pub radius: S<f64>,
+    pub length: S<f64>,
 }
