@@ -100,7 +100,7 @@ fn a_servo_wall_holds_its_target_stress_at_rest() {
         sim.set_wall_control(1, WallControl::Stress(StressControl { target, ..servo })).unwrap();
         let steps = settle(&mut sim, target, area, 100_000);
         sim.run(2000).unwrap();
-        let wall = sim.model().walls[1].clone();
+        let wall = sim.model().walls[1];
         let force = sim.wall_forces()[1];
         let stress = wall_normal_stress(&wall, &force, area);
         let error = (stress / target - 1.0).abs();
