@@ -8,11 +8,11 @@ use crate::error::{unknown_name, Ctx, SceneError};
 use crate::run_length::{check_step_count, RunLength};
 use crate::scene::{Scene, MAX_THREADS};
 use crate::schema::{
-    BoundarySpec, Dt, MaterialSpec, SceneFile, SimulationSpec, Tolerance, WallSpec, S,
+    BoundarySpec, Dt, MaterialSpec, SceneFile, SimulationSpec, Tolerance, S,
 };
 use flexdem_contact::{FailureMode, LinkKinematicsMode, Material};
 use flexdem_elements::{Dofs, MaterialId, Model};
-use flexdem_geom::{Real, Vec3};
+use flexdem_geom::Real;
 use flexdem_integrate::{Settings, TimeStep};
 use flexdem_output::OutputSettings;
 use std::path::Path;
@@ -26,6 +26,7 @@ pub(crate) fn build(file: SceneFile, ctx: Ctx<'_>, source: &Path) -> Result<Scen
         model: Model::new(),
         materials: Vec::new(),
         names: SceneNames::empty(),
+        wall_controls: Vec::new(),
         available: crate::memory::available_memory(),
     };
     let (settings, run, threads) = b.simulation(&file.simulation)?;
@@ -75,6 +76,7 @@ pub(crate) fn build(file: SceneFile, ctx: Ctx<'_>, source: &Path) -> Result<Scen
         settings,
         loads,
         names: b.names,
+        wall_controls: b.wall_controls,
         run,
         threads,
         output,
@@ -302,26 +304,6 @@ impl Builder<'_> {
             .add_material(material)
             .map_err(|e| ctx.at(spec.span(), &format!("materials.{n}"), e.to_string()))?;
         self.materials.push((n.clone(), id));
-        Ok(())
-    }
-
-    fn add_wall(&mut self, spec: &S<WallSpec>) -> Result<(), SceneError> {
-        let ctx = self.ctx;
-        let w = spec.get_ref();
-        let point = ctx.vec3(&w.point, "walls.point", "m")?;
-        let normal = ctx.direction(&w.normal, "walls.normal")?;
-        let material = self.material(&w.material, "walls.material")?;
-        let velocity = w
-            .velocity
-            .as_ref()
-            .map_or(Ok(Vec3::zeros()), |v| ctx.vec3(v, "walls.velocity", "m/s"))?;
-        let mask = ctx.mask(w.mask.as_ref(), "walls.mask")?;
-        let id = self
-            .model
-            .add_wall(point, normal, material)
-            .map_err(|e| ctx.at(spec.span(), "walls", e.to_string()))? as usize;
-        self.model.walls[id].velocity = velocity;
-        self.model.walls[id].mask = mask;
         Ok(())
     }
 

@@ -4,6 +4,7 @@
 use crate::built::SceneNames;
 use crate::error::Ctx;
 use flexdem_elements::{MaterialId, Model};
+use flexdem_integrate::WallControl;
 use std::path::PathBuf;
 
 /// The state of a build: the model so far and the names defined.
@@ -15,6 +16,8 @@ pub(crate) struct Builder<'a> {
     pub materials: Vec<(String, MaterialId)>,
     /// The structures and sphere groups built so far, for selections.
     pub names: SceneNames,
+    /// How each wall built so far moves.
+    pub wall_controls: Vec<WallControl>,
     /// The memory available to the simulation (bytes), if known.
     pub available: Option<u64>,
 }

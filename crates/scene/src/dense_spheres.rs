@@ -86,10 +86,10 @@ impl Builder<'_> {
         if let Some(c) = &sp.cylinder {
             let c = c.get_ref();
             return Ok(Region::Cylinder {
-                base: ctx.vec3(&c.base, &key("cylinder.base"), "m")?,
+                base: ctx.vec3(&c.start, &key("cylinder.start"), "m")?,
                 axis: ctx.direction(&c.axis, &key("cylinder.axis"))?.normalize(),
                 radius: ctx.positive(&c.radius, &key("cylinder.radius"), "m")?,
-                height: ctx.positive(&c.height, &key("cylinder.height"), "m")?,
+                height: ctx.positive(&c.length, &key("cylinder.length"), "m")?,
             });
         }
         let name = sp.inside.as_ref().expect("one region is given");
@@ -99,8 +99,8 @@ impl Builder<'_> {
     /// The inside of a structure's closed PFacet surface, kept the PFacets' radius away.
     fn structure_interior(&self, name: &S<String>, r_max: Real) -> Result<Region, SceneError> {
         let ctx = self.ctx;
-        let Some(st) = self.structures.iter().find(|s| s.name == *name.get_ref()) else {
-            let known: Vec<&str> = self.structures.iter().map(|s| s.name.as_str()).collect();
+        let Some(st) = self.names.structures.iter().find(|s| s.name == *name.get_ref()) else {
+            let known: Vec<&str> = self.names.structures.iter().map(|s| s.name.as_str()).collect();
             return Err(ctx.at(
                 name.span(),
                 "spheres.inside",

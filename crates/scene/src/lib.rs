@@ -21,6 +21,7 @@ mod error;
 mod loads;
 pub mod memory;
 mod output;
+mod output_measures;
 pub mod packing;
 pub mod placement;
 mod read;
@@ -32,6 +33,7 @@ mod selection;
 pub mod sphere_file;
 mod spheres;
 mod structures;
+mod walls;
 
 pub use built::SceneNames;
 pub use error::SceneError;

@@ -2,10 +2,12 @@
 
 use crate::builder::Builder;
 use crate::error::{unknown_name, SceneError};
+use crate::output_measures::MEASURES;
 use crate::schema::{OutputSpec, S};
 use flexdem_output::{OutputSettings, Quantity, SeriesSpec};
 
-/// The series quantities a scene may ask for.
+/// The series quantities of particles and of the whole simulation (those of walls and
+/// samples are [`MEASURES`]).
 const QUANTITIES: [&str; 7] =
     ["position", "velocity", "angular_velocity", "force", "energy", "contacts", "broken_links"];
 
@@ -49,13 +51,15 @@ impl Builder<'_> {
                 ));
             }
             let q = sp.quantity.get_ref().as_str();
-            if !QUANTITIES.contains(&q) {
+            if !QUANTITIES.contains(&q) && !MEASURES.contains(&q) {
+                let known: Vec<&str> = QUANTITIES.iter().chain(&MEASURES).copied().collect();
                 return Err(ctx.at(
                     sp.quantity.span(),
                     "output.series.quantity",
-                    unknown_name("quantity", q, &QUANTITIES),
+                    unknown_name("quantity", q, &known),
                 ));
             }
+            self.check_measure_keys(sp)?;
             let needs_selection =
                 matches!(q, "position" | "velocity" | "angular_velocity" | "force");
             let ids = match (&sp.of, needs_selection) {
@@ -87,6 +91,7 @@ impl Builder<'_> {
                 }
             };
             let quantity = match q {
+                _ if MEASURES.contains(&q) => self.measure(q, s)?,
                 "position" => Quantity::Position(one()?),
                 "velocity" => Quantity::Velocity(one()?),
                 "angular_velocity" => Quantity::AngularVelocity(one()?),

@@ -3,7 +3,7 @@
 use crate::built::SceneNames;
 use crate::run_length::RunLength;
 use flexdem_elements::Model;
-use flexdem_integrate::{Load, Settings};
+use flexdem_integrate::{Load, Settings, WallControl};
 use flexdem_output::OutputSettings;
 use std::path::PathBuf;
 
@@ -23,6 +23,9 @@ pub struct Scene {
     /// The structures and sphere groups by name, for selections after the build
     /// ([`crate::parse_loads`]).
     pub names: SceneNames,
+    /// How each wall moves (one per wall of the model), to set with
+    /// `Simulation::set_wall_control`.
+    pub wall_controls: Vec<WallControl>,
     /// How long to run.
     pub run: RunLength,
     /// Number of worker threads (None: the machine's default).

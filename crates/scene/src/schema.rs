@@ -249,16 +249,6 @@ pub(crate) struct BoxSpec {
     pub max: S<V3>,
 }
 
-/// A cylinder `{ base = [..], axis = [..], radius, height }`.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub(crate) struct CylinderSpec {
-    pub base: S<V3>,
-    pub axis: S<V3>,
-    pub radius: S<f64>,
-    pub height: S<f64>,
-}
-
 /// `[[spheres]]`: one sphere, a lattice, a random or dense packing, or spheres from a file.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -295,7 +285,18 @@ pub(crate) struct WallSpec {
     pub normal: S<V3>,
     pub material: S<String>,
     pub velocity: Option<S<V3>>,
+    pub servo: Option<S<ServoSpec>>,
     pub mask: Option<S<i64>>,
+}
+
+/// `servo = { stress, area, gain, max_speed }` of a wall.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct ServoSpec {
+    pub stress: S<f64>,
+    pub area: S<f64>,
+    pub gain: Option<S<f64>>,
+    pub max_speed: S<f64>,
 }
 
 /// A plane `{ point, normal, tolerance }`.
@@ -368,4 +369,22 @@ pub(crate) struct SeriesSpecToml {
     pub name: S<String>,
     pub quantity: S<String>,
     pub of: Option<S<SelectSpec>>,
+    // wall_force, wall_stress
+    pub wall: Option<S<i64>>,
+    pub area: Option<S<f64>>,
+    // stress, solid_fraction
+    #[serde(rename = "box")]
+    pub region: Option<S<BoxSpec>>,
+    pub cylinder: Option<S<CylinderSpec>>,
+    pub volume: Option<S<f64>>,
+}
+
+/// A solid cylinder `{ start, axis, radius, length }`, placed as a `tube`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct CylinderSpec {
+    pub start: S<V3>,
+    pub axis: S<V3>,
+    pub radius: S<f64>,
+    pub length: S<f64>,
 }

@@ -52,7 +52,7 @@ fn a_dense_cylinder_reaches_its_solid_fraction() {
 [[spheres]]
 kind = "dense"
 material = "m"
-cylinder = { base = [0, 0, 0], axis = [0, 0, 2], radius = 0.05, height = 0.2 }
+cylinder = { start = [0, 0, 0], axis = [0, 0, 2], radius = 0.05, length = 0.2 }
 radius_range = [0.0025, 0.005]
 solid_fraction = 0.6
 seed = 4
@@ -143,7 +143,7 @@ radius = 0.01
     let e = parse(&format!("{base}solid_fraction = 0.6\ninside = \"bal\"\n")).unwrap_err();
     assert!(e.contains("spheres.inside") && e.contains("unknown structure"), "{e}");
     let e = parse(&format!(
-        "{base}solid_fraction = 0.6\ncylinder = {{ base = [0, 0, 0], axis = [0, 0, 0], radius = 1, height = 1 }}\n"
+        "{base}solid_fraction = 0.6\ncylinder = {{ start = [0, 0, 0], axis = [0, 0, 0], radius = 1, length = 1 }}\n"
     ))
     .unwrap_err();
     assert!(e.contains("spheres.cylinder.axis"), "{e}");

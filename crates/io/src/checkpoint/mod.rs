@@ -22,6 +22,8 @@
 //! version and says which version a file has.
 //! Version 3 stores the engine's [`State`] (version 2 stored its predecessor, `Snapshot`,
 //! with the same parts in another order): files of version 2 are refused with that message.
+//! Version 4 adds the wall controls to the [`State`] (`State::wall_controls`: strain control
+//! or a servo holding a stress, one per wall).
 //!
 //! # Writing
 //!
@@ -62,7 +64,7 @@ use std::path::{Path, PathBuf};
 pub const CHECKPOINT_MAGIC: [u8; 8] = *b"FLXDMCKP";
 
 /// The format version this build writes and reads (see the module documentation).
-pub const CHECKPOINT_VERSION: u32 = 3;
+pub const CHECKPOINT_VERSION: u32 = 4;
 
 /// Size of the header before the payload: magic, version, length, checksum (bytes).
 pub const CHECKPOINT_HEADER_LEN: usize = 24;
