@@ -44,6 +44,64 @@ pub enum WallControl {
     /// With the normal velocity a servo sets each step to hold a normal stress; the
     /// tangential part of the wall's velocity is kept.
     Stress(StressControl),
+    /// A servo until time `until`, then the constant velocity `then`: the platen of a
+    /// triaxial test that holds the consolidation stress, then compresses the sample at a
+    /// constant rate. The switch is a velocity change like any other: the wall's work books
+    /// the force at the switch with the velocity it moved with on each side.
+    StressUntil {
+        /// The servo of the first stage.
+        servo: StressControl,
+        /// Time of the switch (s).
+        until: Real,
+        /// Velocity from `until` on (m/s).
+        then: Vec3,
+    },
+}
+
+impl WallControl {
+    /// Checks every value, naming the bad one (see [`StressControl::validate`]; the switch
+    /// time and the later velocity must be finite).
+    pub fn validate(&self) -> Result<(), SimulationError> {
+        match self {
+            WallControl::Velocity => Ok(()),
+            WallControl::Stress(s) => s.validate(),
+            WallControl::StressUntil { servo, until, then } => {
+                servo.validate()?;
+                if !until.is_finite() {
+                    return Err(SimulationError::Setting {
+                        what: "servo until".into(),
+                        value: until.to_string(),
+                        expected: "a finite time (s)".into(),
+                    });
+                }
+                if !then.iter().all(|v| v.is_finite()) {
+                    return Err(SimulationError::Setting {
+                        what: "wall velocity after the servo".into(),
+                        value: format!("{then:?}"),
+                        expected: "a finite velocity (m/s)".into(),
+                    });
+                }
+                Ok(())
+            }
+        }
+    }
+
+    /// The servo acting at time `t`, if any.
+    pub fn servo_at(&self, t: Real) -> Option<&StressControl> {
+        match self {
+            WallControl::Velocity => None,
+            WallControl::Stress(s) => Some(s),
+            WallControl::StressUntil { servo, until, .. } => (t < *until).then_some(servo),
+        }
+    }
+
+    /// The servo of this control, whether or not it acts now.
+    pub fn servo(&self) -> Option<&StressControl> {
+        match self {
+            WallControl::Velocity => None,
+            WallControl::Stress(servo) | WallControl::StressUntil { servo, .. } => Some(servo),
+        }
+    }
 }
 
 /// A servo holding the normal stress on a wall (see the module documentation for the law).
@@ -120,10 +178,7 @@ pub(crate) fn check_controls(
             expected: format!("one per wall ({walls})"),
         });
     }
-    controls.iter().try_for_each(|c| match c {
-        WallControl::Velocity => Ok(()),
-        WallControl::Stress(s) => s.validate(),
-    })
+    controls.iter().try_for_each(WallControl::validate)
 }
 
 /// What the bodies put on each wall at the last step.
@@ -158,18 +213,26 @@ pub fn normal_force(wall: &Wall, force: &Vec3) -> Real {
     -force.dot(&wall.normal)
 }
 
-/// Sets the normal velocity of every stress-controlled wall for the next step of `dt` from
-/// the loads on it (the tangential part of its velocity is kept). Returns whether a wall is
-/// stress-controlled.
+/// Sets the normal velocity of every stress-controlled wall for the next step (from `time`,
+/// `dt` long) from the loads on it (the tangential part of its velocity is kept); a wall
+/// whose servo has ended takes its later velocity. Returns whether a wall is steered.
 pub(crate) fn steer_walls(
     walls: &mut [Wall],
     controls: &[WallControl],
     loads: &WallLoads,
+    time: Real,
     dt: Real,
 ) -> bool {
     let mut steered = false;
     for (w, (wall, control)) in walls.iter_mut().zip(controls).enumerate() {
-        let WallControl::Stress(servo) = control else { continue };
+        if let WallControl::StressUntil { until, then, .. } = control {
+            if time >= *until {
+                steered |= wall.velocity != *then;
+                wall.velocity = *then;
+                continue;
+            }
+        }
+        let Some(servo) = control.servo_at(time) else { continue };
         let f_n = normal_force(wall, &loads.force[w]);
         let speed = servo.normal_speed(f_n, loads.stiffness[w], dt);
         let n = wall.normal;
@@ -239,9 +302,34 @@ mod tests {
         }];
         let loads = WallLoads { force: vec![Vec3::new(0.0, 0.0, 400.0)], stiffness: vec![0.0] };
         let controls = [WallControl::Stress(servo(Some(1e-5)))];
-        assert!(steer_walls(&mut walls, &controls, &loads, 1e-6));
+        assert!(steer_walls(&mut walls, &controls, &loads, 0.0, 1e-6));
         // F_n = 400 N < 1 kN: down into the bodies (along n = −z) at 6 mm/s
         assert!((walls[0].velocity - Vec3::new(0.2, 0.0, -6e-3)).norm() < 1e-15);
-        assert!(!steer_walls(&mut walls, &[WallControl::Velocity], &loads, 1e-6));
+        assert!(!steer_walls(&mut walls, &[WallControl::Velocity], &loads, 0.0, 1e-6));
+    }
+
+    #[test]
+    fn a_servo_until_a_time_then_moves_at_its_later_velocity() {
+        let mut walls = [Wall {
+            point: Vec3::zeros(),
+            normal: Vec3::z(),
+            velocity: Vec3::zeros(),
+            material: 0,
+            mask: 1,
+        }];
+        let then = Vec3::new(0.0, 0.0, 0.02);
+        let control = WallControl::StressUntil { servo: servo(Some(1e-5)), until: 1.0, then };
+        let loads = WallLoads { force: vec![Vec3::zeros()], stiffness: vec![0.0] };
+        // before the switch: the servo drives the unloaded wall into the bodies
+        assert!(steer_walls(&mut walls, &[control], &loads, 0.5, 1e-6));
+        assert!(walls[0].velocity.z > 0.0 && walls[0].velocity != then);
+        assert_eq!(control.servo_at(0.5), control.servo());
+        // from the switch on: the later velocity, and no servo
+        assert!(steer_walls(&mut walls, &[control], &loads, 1.0, 1e-6));
+        assert_eq!(walls[0].velocity, then);
+        assert!(!steer_walls(&mut walls, &[control], &loads, 2.0, 1e-6));
+        assert_eq!(control.servo_at(1.0), None);
+        let bad = WallControl::StressUntil { servo: servo(None), until: Real::NAN, then };
+        assert!(bad.validate().unwrap_err().to_string().contains("servo until"));
     }
 }

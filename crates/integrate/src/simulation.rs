@@ -229,7 +229,7 @@ impl Simulation {
 
     /// Sets how wall `w` moves: [`WallControl::Velocity`] (it keeps the velocity it has now)
     /// or [`WallControl::Stress`] (a servo sets its normal velocity from the next step on; see
-    /// [`crate::StressControl`]). A control with a bad value is refused, naming it (nothing
+    /// [`crate::StressControl`]), or [`WallControl::StressUntil`] (a servo, then a velocity). A control with a bad value is refused, naming it (nothing
     /// changes).
     pub fn set_wall_control(
         &mut self,
@@ -237,9 +237,7 @@ impl Simulation {
         control: WallControl,
     ) -> Result<(), SimulationError> {
         let w = self.wall(w)?;
-        if let WallControl::Stress(servo) = &control {
-            servo.validate()?;
-        }
+        control.validate()?;
         self.state.wall_controls[w] = control;
         Ok(())
     }

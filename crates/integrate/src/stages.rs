@@ -222,6 +222,7 @@ impl Simulation {
             &mut self.state.model.walls,
             &self.state.wall_controls,
             &self.pipeline.walls,
+            self.state.clock.time,
             dt,
         );
         let after = if steered { self.wall_power() } else { before };

@@ -7,9 +7,7 @@ use crate::built::SceneNames;
 use crate::error::{unknown_name, Ctx, SceneError};
 use crate::run_length::{check_step_count, RunLength};
 use crate::scene::{Scene, MAX_THREADS};
-use crate::schema::{
-    BoundarySpec, Dt, MaterialSpec, SceneFile, SimulationSpec, Tolerance, S,
-};
+use crate::schema::{BoundarySpec, Dt, MaterialSpec, SceneFile, SimulationSpec, Tolerance, S};
 use flexdem_contact::{FailureMode, LinkKinematicsMode, Material};
 use flexdem_elements::{Dofs, MaterialId, Model};
 use flexdem_geom::Real;

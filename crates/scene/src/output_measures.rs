@@ -5,7 +5,7 @@
 use crate::builder::Builder;
 use crate::error::SceneError;
 use crate::schema::{SeriesSpecToml, S};
-use flexdem_integrate::{Region, WallControl};
+use flexdem_integrate::Region;
 use flexdem_output::Quantity;
 
 /// The series quantities of walls and samples.
@@ -103,7 +103,9 @@ impl Builder<'_> {
     fn series_area(&self, s: &S<SeriesSpecToml>, wall: u32) -> Result<f64, SceneError> {
         match (&s.get_ref().area, self.wall_controls.get(wall as usize)) {
             (Some(a), _) => self.ctx.positive(a, "output.series.area", "m²"),
-            (None, Some(WallControl::Stress(servo))) => Ok(servo.area),
+            (None, Some(control)) if control.servo().is_some() => {
+                Ok(control.servo().map_or(0.0, |s| s.area))
+            }
             (None, _) => Err(self.ctx.missing(
                 s.span(),
                 "output.series.area",

@@ -289,7 +289,7 @@ pub(crate) struct WallSpec {
     pub mask: Option<S<i64>>,
 }
 
-/// `servo = { stress, area, gain, max_speed }` of a wall.
+/// `servo = { stress, area, gain, max_speed, until, velocity_after }` of a wall.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct ServoSpec {
@@ -297,6 +297,8 @@ pub(crate) struct ServoSpec {
     pub area: S<f64>,
     pub gain: Option<S<f64>>,
     pub max_speed: S<f64>,
+    pub until: Option<S<f64>>,
+    pub velocity_after: Option<S<V3>>,
 }
 
 /// A plane `{ point, normal, tolerance }`.

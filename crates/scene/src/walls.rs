@@ -21,7 +21,7 @@ impl Builder<'_> {
             .map_or(Ok(Vec3::zeros()), |v| ctx.vec3(v, "walls.velocity", "m/s"))?;
         let control = match (&w.servo, &w.velocity) {
             (None, _) => WallControl::Velocity,
-            (Some(servo), None) => WallControl::Stress(self.servo(servo)?),
+            (Some(servo), None) => self.servo_control(servo)?,
             (Some(servo), Some(_)) => {
                 return Err(ctx.at(
                     servo.span(),
@@ -40,6 +40,29 @@ impl Builder<'_> {
         self.model.walls[id].mask = mask;
         self.wall_controls.push(control);
         Ok(())
+    }
+
+    /// `servo = { ..., until, velocity_after }`: the servo alone, or until a time and then a
+    /// constant velocity (`velocity_after`, default at rest).
+    fn servo_control(&self, spec: &S<ServoSpec>) -> Result<WallControl, SceneError> {
+        let ctx = self.ctx;
+        let s = spec.get_ref();
+        let servo = self.servo(spec)?;
+        match (&s.until, &s.velocity_after) {
+            (None, None) => Ok(WallControl::Stress(servo)),
+            (None, Some(v)) => Err(ctx.at(
+                v.span(),
+                "walls.servo.velocity_after",
+                "needs `until` (the time the servo ends and this velocity starts)",
+            )),
+            (Some(until), after) => Ok(WallControl::StressUntil {
+                servo,
+                until: ctx.non_negative(until, "walls.servo.until", "s")?,
+                then: after.as_ref().map_or(Ok(Vec3::zeros()), |v| {
+                    ctx.vec3(v, "walls.servo.velocity_after", "m/s")
+                })?,
+            }),
+        }
     }
 
     /// The servo of `servo = { stress, area, gain, max_speed }`.
