@@ -6,6 +6,7 @@
 use crate::contacts::{Contact, Contacts};
 use crate::energy::EnergyAccount;
 use crate::links::Links;
+use crate::pressure::{check_pressure, Pressure};
 use crate::settings::{Load, Ramp, Settings};
 use crate::time_step::StiffnessSums;
 use crate::SimulationError;
@@ -48,6 +49,8 @@ pub struct State {
     pub contacts: Contacts,
     /// Imposed loads.
     pub loads: Vec<Load>,
+    /// Pressures on PFacets (follower loads).
+    pub pressures: Vec<Pressure>,
     /// Time, steps, time step.
     pub clock: Clock,
     /// Energy terms, pending works, energy watch.
@@ -67,6 +70,7 @@ impl State {
             links,
             contacts: Contacts::default(),
             loads: Vec::new(),
+            pressures: Vec::new(),
             clock: Clock::default(),
             energy: EnergyAccount::default(),
             warnings: Vec::new(),
@@ -82,9 +86,11 @@ impl State {
 
     /// Checks the whole state as [`crate::Simulation::new`] checks a new one, and for
     /// consistency between its parts (a state read from a file may be damaged): links,
-    /// stiffness sums, loads and contacts that fit the model, a positive finite time step.
+    /// stiffness sums, loads, pressures and contacts that fit the model, a positive finite
+    /// time step.
     pub(crate) fn check(&self) -> Result<(), SimulationError> {
         State::check_parts(&self.model, &self.settings)?;
+        check_pressures(&self.pressures, &self.model)?;
         if !self.is_consistent() {
             return Err(SimulationError::Setting {
                 what: "simulation state".into(),
@@ -115,6 +121,14 @@ impl State {
             && c.previous_dt.is_finite()
             && c.time.is_finite()
     }
+}
+
+/// Checks each pressure against `model` (PFacet ids in range, finite values).
+pub(crate) fn check_pressures(
+    pressures: &[Pressure],
+    model: &Model,
+) -> Result<(), SimulationError> {
+    pressures.iter().try_for_each(|p| check_pressure(p, model.pfacets.len()))
 }
 
 /// Whether the nodes of both sites of `c` are among the `n` particles.
