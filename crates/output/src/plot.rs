@@ -22,6 +22,7 @@ fn quantity_label(quantity: &Quantity) -> &'static str {
         Quantity::ForceOnParticles(_) => "force (N)",
         Quantity::ContactCount => "contacts",
         Quantity::BrokenLinks => "broken links",
+        Quantity::EnclosedVolume { .. } => "volume (m³)",
     }
 }
 

@@ -25,6 +25,16 @@ pub enum Quantity {
     ContactCount,
     /// Number of broken links: 1 column.
     BrokenLinks,
+    /// Volume enclosed by the PFacets of a structure (m³), each of its open ends closed by
+    /// the plane of one of `walls` (the nearest; one per open end, none for a closed shell):
+    /// 1 column `volume` (see [`flexdem_elements::structure_volume`]; NaN if it cannot be
+    /// measured any more).
+    EnclosedVolume {
+        /// The structure.
+        structure: u32,
+        /// The walls whose current planes close its open ends.
+        walls: Vec<u32>,
+    },
 }
 
 /// One named quantity of the CSV series; the name prefixes its columns.
@@ -84,7 +94,8 @@ fn energy_values(sim: &Simulation) -> [Real; 10] {
 }
 
 /// Column names of one series, each `NAME_COMPONENT_UNIT`: `tip_x_m`, `tip_vx_m_per_s`,
-/// `tip_wx_rad_per_s`, `e_kinetic_translation_J`, `load_fx_N`, `n_count`.
+/// `tip_wx_rad_per_s`, `e_kinetic_translation_J`, `load_fx_N`, `n_count`,
+/// `sample_volume_m3`.
 pub fn series_columns(spec: &SeriesSpec) -> Vec<String> {
     let name = &spec.name;
     let triple = |prefix: &str, unit: &str| -> Vec<String> {
@@ -97,6 +108,7 @@ pub fn series_columns(spec: &SeriesSpec) -> Vec<String> {
         Quantity::Energy => ENERGY_TERMS.iter().map(|t| format!("{name}_{t}_J")).collect(),
         Quantity::ForceOnParticles(_) => triple("f", "N"),
         Quantity::ContactCount | Quantity::BrokenLinks => vec![format!("{name}_count")],
+        Quantity::EnclosedVolume { .. } => vec![format!("{name}_volume_m3")],
     }
 }
 
@@ -108,7 +120,8 @@ pub fn header_columns(series: &[SeriesSpec]) -> Vec<String> {
 }
 
 /// Checks a series list against a simulation: names valid and distinct, particle ids in range,
-/// selections not empty.
+/// selections not empty, enclosed volumes measurable (structure and walls exist, one wall per
+/// open end).
 pub fn validate_series(series: &[SeriesSpec], sim: &Simulation) -> Result<(), OutputError> {
     let count = sim.model().particles.pos.len();
     for (i, spec) in series.iter().enumerate() {
@@ -147,8 +160,26 @@ pub fn validate_series(series: &[SeriesSpec], sim: &Simulation) -> Result<(), Ou
                 problem: format!("particle {bad} does not exist (the model has {count})"),
             });
         }
+        if let Quantity::EnclosedVolume { structure, walls } = &spec.quantity {
+            enclosed_volume(sim, *structure, walls)
+                .map_err(|problem| OutputError::Series { series: spec.name.clone(), problem })?;
+        }
     }
     Ok(())
+}
+
+/// The volume enclosed by the PFacets of `structure`, closed by the current planes of
+/// `walls` (m³), or what prevents measuring it.
+fn enclosed_volume(sim: &Simulation, structure: u32, walls: &[u32]) -> Result<Real, String> {
+    let model = sim.model();
+    let planes = walls
+        .iter()
+        .map(|&w| match model.walls.get(w as usize) {
+            Some(wall) => Ok(wall.plane()),
+            None => Err(format!("wall {w} does not exist (the model has {})", model.walls.len())),
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    flexdem_elements::structure_volume(model, structure, &planes).map_err(|e| e.to_string())
 }
 
 /// Pushes the three components of `v` onto `row`.
@@ -185,6 +216,9 @@ pub fn series_values(spec: &SeriesSpec, sim: &Simulation, row: &mut Vec<Real>) {
                 .filter(|s| s.status == flexdem_contact::LinkStatus::Broken)
                 .count();
             row.push(broken as Real);
+        }
+        Quantity::EnclosedVolume { structure, walls } => {
+            row.push(enclosed_volume(sim, *structure, walls).unwrap_or(Real::NAN));
         }
     }
 }
