@@ -1,5 +1,6 @@
-//! From a scene to a simulation: the model and settings to the engine, the loads added, the
-//! run length checked at the time step the engine chose; and the worker threads.
+//! From a scene to a simulation: the model and settings to the engine, the loads and
+//! pressures added, the run length checked at the time step the engine chose; and the
+//! worker threads.
 
 use crate::error::RunError;
 use flexdem_integrate::Simulation;
@@ -20,7 +21,7 @@ pub struct SceneRest {
     pub source: PathBuf,
 }
 
-/// The simulation of `scene` with its loads, and the rest of the scene. Errors name the scene
+/// The simulation of `scene` with its loads and pressures, and the rest of the scene. Errors name the scene
 /// file; they are all bad input.
 pub fn build_simulation(scene: Scene) -> Result<(Simulation, SceneRest), RunError> {
     let source = scene.source.clone();
@@ -31,6 +32,9 @@ pub fn build_simulation(scene: Scene) -> Result<(Simulation, SceneRest), RunErro
     let mut sim = Simulation::new(scene.model, scene.settings).map_err(refused)?;
     for load in scene.loads {
         sim.add_load(load).map_err(refused)?;
+    }
+    for pressure in scene.pressures {
+        sim.add_pressure(pressure).map_err(refused)?;
     }
     // with dt = "auto" the number of steps of a duration is known only now
     check_step_count(scene.run, sim.dt())

@@ -2,7 +2,7 @@
 
 use crate::run_length::RunLength;
 use flexdem_elements::Model;
-use flexdem_integrate::{Load, Settings};
+use flexdem_integrate::{Load, Pressure, Settings};
 use flexdem_output::OutputSettings;
 use std::path::PathBuf;
 
@@ -19,6 +19,8 @@ pub struct Scene {
     pub settings: Settings,
     /// Imposed forces and moments, to add with `Simulation::add_load`.
     pub loads: Vec<Load>,
+    /// Pressures on PFacets, to add with `Simulation::add_pressure`.
+    pub pressures: Vec<Pressure>,
     /// How long to run.
     pub run: RunLength,
     /// Number of worker threads (None: the machine's default).
