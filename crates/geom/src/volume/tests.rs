@@ -313,6 +313,18 @@ proptest! {
         prop_assert!((v1 - v0).abs() <= tolerance, "{} vs {}", v1, v0);
     }
 
+    /// The triangles, ribbons and caps make a closed surface wherever the boundary nodes
+    /// are: the flux of (x − o)/3 through it does not depend on the point o.
+    #[test]
+    fn the_closed_surface_is_watertight((t, planes) in wobbly_tube(), o in vec3(20.0)) {
+        let v0 = volume_closed_by_planes(&t.vertices, &t.triangles, &closures(&t, &planes));
+        let caps: Real = closures(&t, &planes).iter().map(|c| plane_closure_flux(&o, &t.vertices, c)).sum();
+        let v1 = triangles_flux(&o, &t.vertices, &t.triangles) + caps;
+        // terms of size |o|³ cancel: round-off relative to them
+        let tolerance = 1e-13 * (1.0 + v0.abs()) * (5.0 + o.norm()).powi(3);
+        prop_assert!((v1 - v0).abs() <= tolerance, "{} vs {}", v1, v0);
+    }
+
     /// Sliding a closing plane by δ along its unit normal adds the prism of its cap:
     /// ΔV = δ·(n̂·A_cap), A_cap the vector area of the cap as it faces out of the closed
     /// surface (the projected loop run backwards) — whichever side the loop's nodes are on.
