@@ -165,9 +165,10 @@ impl Simulation {
     }
 
     /// Imposed loads, pressures on PFacets (`pressure.rs`) and the user's hook, kept apart in
-    /// `external_force` and `external_torque` for their work (the load work), and added to the totals (nothing to sum over every
-    /// particle without them). Returns the half of their work over the step before (`previous`
-    /// long), with the velocities of t − dt₀/2 (see `StepWork::boundary` for the halves).
+    /// `external_force` and `external_torque` for their work (the load work), and added to
+    /// the totals (nothing to sum over every particle without them). Returns the half of
+    /// their work over the step before (`previous` long), with the velocities of t − dt₀/2
+    /// (see `StepWork::boundary` for the halves).
     fn external_load_stage(&mut self, previous: Real) -> Real {
         if !self.is_loaded() {
             return 0.0;
@@ -340,9 +341,9 @@ impl Simulation {
         self.state.energy.watch.scale = self.state.energy.watch.scale.max(e.scale());
     }
 
-    /// Power of the imposed loads, the pressures and the hook, `Σ (F·v + τ·ω)` with the current velocities,
-    /// on every DOF (on a blocked one the support's reaction, counted in the boundary work,
-    /// takes the rest of the node's force).
+    /// Power of the imposed loads, the pressures and the hook, `Σ (F·v + τ·ω)` with the
+    /// current velocities, on every DOF (on a blocked one the support's reaction, counted in
+    /// the boundary work, takes the rest of the node's force).
     fn external_power(&self) -> Real {
         let p = &self.state.model.particles;
         let forces: Real =

@@ -133,7 +133,8 @@ fn pressure_work_is_p_delta_v_and_the_shell_does_not_drift() {
         }
     }
     println!(
-        "largest ΔV {:.3e} of V0; worst |W − pΔV|/|pΔV| = {worst_work:.2e}; worst |Σ m·v|/(M·max|v|) = {worst_drift:.2e}; dt {:.3e} s",
+        "largest ΔV {:.3e} of V0; worst |W − pΔV|/|pΔV| = {worst_work:.2e}; \
+         worst |Σ m·v|/(M·max|v|) = {worst_drift:.2e}; dt {:.3e} s",
         largest_dv / v0,
         sim.dt()
     );
@@ -178,7 +179,8 @@ fn energy_balance_closes_for_a_ringing_pressurised_shell() {
     }
     let e = sim.energy();
     println!(
-        "ΔV/V0 {:.3e}, load work {:.4e} J, links {:.4e} J, kinetic {:.4e} J, worst balance error {worst:.2e}",
+        "ΔV/V0 {:.3e}, load work {:.4e} J, links {:.4e} J, kinetic {:.4e} J, \
+         worst balance error {worst:.2e}",
         volume(&sim) / v0 - 1.0,
         e.load_work,
         e.elastic_links,
@@ -246,8 +248,9 @@ fn damped_shell_comes_to_rest_at_the_membrane_theory_radius() {
     let node_strain = particles.pos.iter().map(|x| (x - centre).norm() / R - 1.0).sum::<Real>()
         / particles.len() as Real;
     println!(
-        "at rest after {steps} steps: ε from the volume {measured:.5e}, mean node ε {node_strain:.5e}; \
-         uniform dilation (links' stiffness) {theory:.5e} ({:+.2} %), equilateral lattice {continuum:.5e} ({:+.2} %)",
+        "at rest after {steps} steps: ε from the volume {measured:.5e}, mean node ε \
+         {node_strain:.5e}; uniform dilation (links' stiffness) {theory:.5e} ({:+.2} %), \
+         equilateral lattice {continuum:.5e} ({:+.2} %)",
         100.0 * (measured / theory - 1.0),
         100.0 * (measured / continuum - 1.0),
     );

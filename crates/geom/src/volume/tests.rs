@@ -303,10 +303,15 @@ proptest! {
 
     /// Moved and turned as a whole, the closed tube keeps its volume.
     #[test]
-    fn volume_is_invariant_under_rigid_motions((t, planes) in wobbly_tube(), rot in rotation(), shift in vec3(50.0)) {
+    fn volume_is_invariant_under_rigid_motions(
+        (t, planes) in wobbly_tube(),
+        rot in rotation(),
+        shift in vec3(50.0),
+    ) {
         let v0 = volume_closed_by_planes(&t.vertices, &t.triangles, &closures(&t, &planes));
         let moved: Vec<Vec3> = t.vertices.iter().map(|x| rot * x + shift).collect();
-        let moved_planes = planes.map(|p| Plane { point: rot * p.point + shift, normal: rot * p.normal });
+        let moved_planes =
+            planes.map(|p| Plane { point: rot * p.point + shift, normal: rot * p.normal });
         let v1 = volume_closed_by_planes(&moved, &t.triangles, &closures(&t, &moved_planes));
         // round-off of coordinates up to |shift| + 5 over a closed surface of size ~5
         let tolerance = 1e-13 * (1.0 + v0.abs()) * (5.0 + shift.norm());
@@ -318,7 +323,8 @@ proptest! {
     #[test]
     fn the_closed_surface_is_watertight((t, planes) in wobbly_tube(), o in vec3(20.0)) {
         let v0 = volume_closed_by_planes(&t.vertices, &t.triangles, &closures(&t, &planes));
-        let caps: Real = closures(&t, &planes).iter().map(|c| plane_closure_flux(&o, &t.vertices, c)).sum();
+        let caps: Real =
+            closures(&t, &planes).iter().map(|c| plane_closure_flux(&o, &t.vertices, c)).sum();
         let v1 = triangles_flux(&o, &t.vertices, &t.triangles) + caps;
         // terms of size |o|³ cancel: round-off relative to them
         let tolerance = 1e-13 * (1.0 + v0.abs()) * (5.0 + o.norm()).powi(3);
@@ -329,25 +335,35 @@ proptest! {
     /// ΔV = δ·(n̂·A_cap), A_cap the vector area of the cap as it faces out of the closed
     /// surface (the projected loop run backwards) — whichever side the loop's nodes are on.
     #[test]
-    fn sliding_a_plane_adds_the_prism_of_its_cap((t, planes) in wobbly_tube(), delta in -0.5..0.5_f64, which in 0usize..2) {
+    fn sliding_a_plane_adds_the_prism_of_its_cap(
+        (t, planes) in wobbly_tube(),
+        delta in -0.5..0.5_f64,
+        which in 0usize..2,
+    ) {
         let v0 = volume_closed_by_planes(&t.vertices, &t.triangles, &closures(&t, &planes));
         let n = planes[which].normal.normalize();
         let mut slid = planes;
         slid[which].point += n * delta;
         let v1 = volume_closed_by_planes(&t.vertices, &t.triangles, &closures(&t, &slid));
         let boundary = if which == 0 { &t.bottom } else { &t.top };
-        let cap: Vec<Vec3> = boundary.iter().rev().map(|&i| planes[which].project(&t.vertices[i])).collect();
+        let cap: Vec<Vec3> =
+            boundary.iter().rev().map(|&i| planes[which].project(&t.vertices[i])).collect();
         let expected = delta * n.dot(&polygon_vector_area(&cap));
-        prop_assert!((v1 - v0 - expected).abs() <= 1e-12 * (1.0 + v0.abs()), "{} vs {}", v1 - v0, expected);
+        let error = (v1 - v0 - expected).abs();
+        prop_assert!(error <= 1e-12 * (1.0 + v0.abs()), "{} vs {}", v1 - v0, expected);
     }
 
     /// Scaling every length by k scales the volume by k³.
     #[test]
-    fn volume_scales_with_the_cube_of_lengths((t, planes) in wobbly_tube(), k in 0.01..100.0_f64) {
+    fn volume_scales_with_the_cube_of_lengths(
+        (t, planes) in wobbly_tube(),
+        k in 0.01..100.0_f64,
+    ) {
         let v0 = volume_closed_by_planes(&t.vertices, &t.triangles, &closures(&t, &planes));
         let scaled: Vec<Vec3> = t.vertices.iter().map(|x| x * k).collect();
         let scaled_planes = planes.map(|p| Plane { point: p.point * k, normal: p.normal });
         let v1 = volume_closed_by_planes(&scaled, &t.triangles, &closures(&t, &scaled_planes));
-        prop_assert!((v1 / (k * k * k) - v0).abs() <= 1e-12 * (1.0 + v0.abs()), "{} vs {}", v1 / (k * k * k), v0);
+        let unscaled = v1 / (k * k * k);
+        prop_assert!((unscaled - v0).abs() <= 1e-12 * (1.0 + v0.abs()), "{} vs {}", unscaled, v0);
     }
 }
