@@ -31,6 +31,9 @@ pub enum Command {
     /// threads: a table of ms/step, ns per element-step, stage split, memory; CSV to
     /// target/flexdem/bench/latest.csv by default (--update-committed: bench/results/).
     Bench(crate::commands::bench::BenchArgs),
+    /// Write the free spheres of a scene (e.g. a dense packing) or of a checkpoint (a sample
+    /// settled by a run) to a CSV file that `[[spheres]] kind = "file"` reads back.
+    Spheres(SpheresArgs),
 }
 
 /// A scene file, for `check` and `info`.
@@ -38,6 +41,16 @@ pub enum Command {
 pub struct SceneArgs {
     /// The scene file (TOML; see docs/scene-reference.md).
     pub scene: PathBuf,
+}
+
+/// `flexdem spheres`.
+#[derive(Debug, Args)]
+pub struct SpheresArgs {
+    /// A scene file (.toml) or a checkpoint (written by --checkpoint-every or Ctrl-C).
+    pub input: PathBuf,
+    /// The CSV file to write (columns x, y, z, radius).
+    #[arg(long, short, value_name = "FILE.csv")]
+    pub output: PathBuf,
 }
 
 /// Options shared by `run` and `resume`.

@@ -24,6 +24,7 @@ fn main() {
         Command::Resume(args) => commands::resume::resume(&args),
         Command::Validate(args) => commands::validate::validate(&args),
         Command::Bench(args) => commands::bench::bench(&args),
+        Command::Spheres(args) => commands::spheres::spheres(&args),
     };
     let code = match result {
         Ok(Outcome::Done) => 0,

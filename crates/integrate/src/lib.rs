@@ -1,5 +1,7 @@
 //! The flexdem engine: collision detection, contact bookkeeping, parallel force assembly,
-//! leapfrog integration with Cundall damping, and the critical time step (model.md §4–6).
+//! leapfrog integration with Cundall damping, the critical time step (model.md §4–6), walls
+//! that hold a stress and the measures of a sample (stress, solid fraction; model.md §5),
+//! pressure on PFacets (model.md §6).
 
 mod broad_phase;
 mod collider;
@@ -9,9 +11,12 @@ mod energy;
 mod error;
 mod integrator;
 mod links;
+mod measures;
 mod pipeline;
 mod prefilter;
 mod pressure;
+mod region;
+mod servo;
 mod settings;
 mod simulation;
 mod stages;
@@ -26,8 +31,13 @@ pub use energy::{Energy, EnergyAccount, EnergyWatch, PendingWork};
 pub use error::SimulationError;
 pub use integrator::{kinetic_energy, leapfrog_step, StepWork};
 pub use links::{LinkEvents, LinkUpdate, Links};
+pub use measures::{
+    deviator_stress, love_weber_stress, mean_stress, solid_fraction, wall_normal_stress,
+};
 pub use pipeline::ForceHook;
 pub use pressure::{add_pressure_forces, pressure_node_force, Pressure};
+pub use region::Region;
+pub use servo::{normal_force, StressControl, WallControl, SERVO_RELAXATION};
 pub use settings::{Load, Ramp, Settings, TimeStep, DEFAULT_ENERGY_TOLERANCE};
 pub use simulation::{Control, Simulation};
 pub use state::{Clock, State};

@@ -1,9 +1,11 @@
 //! The pipeline of a simulation: what steps the [`State`] and can be dropped and rebuilt from
 //! it at any time (rapier's habit): the collider, the adjacency of the features, the contact
-//! buffers, the per-particle force sums, the stage timers and the user's force hook.
+//! buffers, the per-particle and per-wall force sums, the stage timers and the user's force
+//! hook.
 
 use crate::collider::Collider;
 use crate::contacts::ContactPipeline;
+use crate::servo::WallLoads;
 use crate::state::State;
 use crate::timers::Timers;
 use flexdem_elements::{Adjacency, Particles};
@@ -28,6 +30,8 @@ pub(crate) struct Pipeline {
     pub(crate) external_force: Vec<Vec3>,
     /// Torque of the imposed loads and the hook on each particle.
     pub(crate) external_torque: Vec<Vec3>,
+    /// Force and contact stiffness of the bodies on each wall at the last step.
+    pub(crate) walls: WallLoads,
     /// Per-stage wall-clock times.
     pub(crate) timers: Timers,
     /// The user's hook, if any.
@@ -46,6 +50,10 @@ impl Pipeline {
             torque: vec![Vec3::zeros(); n],
             external_force: vec![Vec3::zeros(); n],
             external_torque: vec![Vec3::zeros(); n],
+            walls: WallLoads {
+                force: vec![Vec3::zeros(); state.model.walls.len()],
+                stiffness: vec![0.0; state.model.walls.len()],
+            },
             timers: Timers::default(),
             force_hook: None,
         }

@@ -1,4 +1,4 @@
-//! Pressure on PFacets (model.md §5): a follower load that acts on each loaded PFacet's
+//! Pressure on PFacets (docs/model.md §6): a follower load that acts on each loaded PFacet's
 //! current mid-surface triangle, normal to it, in proportion to its current area.
 //!
 //! On a PFacet with nodes `(a, b, c)` at `x_a, x_b, x_c`, area `A_f` and unit normal

@@ -9,6 +9,7 @@ use crate::integrator::kinetic_energy;
 use crate::links::Links;
 use crate::pipeline::{ForceHook, Pipeline};
 use crate::pressure::{check_pressure, Pressure};
+use crate::servo::WallControl;
 use crate::settings::{Load, Settings};
 use crate::state::{check_load, check_pressures, State};
 use crate::timers::Timers;
@@ -32,8 +33,9 @@ pub enum Control {
 /// [`Simulation::contacts`], ...) and changed only through methods that keep the pipeline's
 /// caches right: [`Simulation::edit_model`] and [`Simulation::set_settings`] re-validate and
 /// rebuild what depends on what they change; the cheap setters ([`Simulation::set_velocity`],
-/// [`Simulation::set_wall_velocity`], [`Simulation::add_load`], [`Simulation::add_pressure`],
-/// ...) change what no cache depends on.
+/// [`Simulation::set_wall_velocity`], [`Simulation::set_wall_control`],
+/// [`Simulation::add_load`], [`Simulation::add_pressure`], ...) change what no cache depends
+/// on.
 pub struct Simulation {
     pub(crate) state: State,
     pub(crate) pipeline: Pipeline,
@@ -229,16 +231,12 @@ impl Simulation {
         Ok(())
     }
 
-    /// Sets the velocity of wall `w` (m/s).
+    /// Sets the velocity of wall `w` (m/s) and puts it under strain control
+    /// ([`WallControl::Velocity`]): it keeps that velocity. The work of the wall over the step
+    /// before counts the new velocity (its force at t is shared half over the step before),
+    /// an O(dt) error once per change, as for a particle's imposed velocity.
     pub fn set_wall_velocity(&mut self, w: u32, velocity: Vec3) -> Result<(), SimulationError> {
-        let n = self.state.model.walls.len();
-        let Some(wall) = self.state.model.walls.get_mut(w as usize) else {
-            return Err(SimulationError::Setting {
-                what: "wall".into(),
-                value: w.to_string(),
-                expected: format!("a wall id below {n}"),
-            });
-        };
+        let w = self.wall(w)?;
         if !velocity.iter().all(|x| x.is_finite()) {
             return Err(SimulationError::Setting {
                 what: "wall velocity".into(),
@@ -246,8 +244,51 @@ impl Simulation {
                 expected: "finite numbers".into(),
             });
         }
-        wall.velocity = velocity;
+        self.state.model.walls[w].velocity = velocity;
+        self.state.wall_controls[w] = WallControl::Velocity;
         Ok(())
+    }
+
+    /// Sets how wall `w` moves: [`WallControl::Velocity`] (it keeps the velocity it has now)
+    /// or [`WallControl::Stress`] (a servo sets its normal velocity from the next step on; see
+    /// [`crate::StressControl`]). A control with a bad value is refused, naming it (nothing
+    /// changes).
+    pub fn set_wall_control(
+        &mut self,
+        w: u32,
+        control: WallControl,
+    ) -> Result<(), SimulationError> {
+        let w = self.wall(w)?;
+        if let WallControl::Stress(servo) = &control {
+            servo.validate()?;
+        }
+        self.state.wall_controls[w] = control;
+        Ok(())
+    }
+
+    /// How each wall moves, one control per wall.
+    pub fn wall_controls(&self) -> &[WallControl] {
+        &self.state.wall_controls
+    }
+
+    /// The force the bodies put on each wall at the last step (N): `−Σ F_wall→body` over its
+    /// contacts; its normal part `−F·n` is ≥ 0 in compression ([`crate::normal_force`]).
+    /// Zero before the first step of a simulation built or restored.
+    pub fn wall_forces(&self) -> &[Vec3] {
+        &self.pipeline.walls.force
+    }
+
+    /// The index of wall `w` if it exists.
+    fn wall(&self, w: u32) -> Result<usize, SimulationError> {
+        let n = self.state.model.walls.len();
+        if w as usize >= n {
+            return Err(SimulationError::Setting {
+                what: "wall".into(),
+                value: w.to_string(),
+                expected: format!("a wall id below {n}"),
+            });
+        }
+        Ok(w as usize)
     }
 
     /// Blocks `dofs` on each of `particles` (all or nothing, see `Model::block`): their
@@ -324,7 +365,9 @@ impl Simulation {
     /// anew at rest in the current configuration: the elastic energy the old ones held goes
     /// to `links_dissipated`), and the time step. When the particles, connections, PFacets or
     /// walls changed, the contacts end (their friction stays counted as dissipated, their
-    /// elastic energy goes to `contact_releases`) and are found again at the next step. A model that fails the checks is
+    /// elastic energy goes to `contact_releases`) and are found again at the next step. The
+    /// wall controls are kept by wall index; walls added get [`WallControl::Velocity`], the
+    /// controls of walls removed from the end go. A model that fails the checks is
     /// put back as it was; an error of the time step estimate (no stiffness anywhere) comes
     /// after the change. A model whose PFacets no longer fit the pressures is put back too.
     /// Costs a copy of the model: for velocities, positions and walls use the setters.
@@ -361,6 +404,7 @@ impl Simulation {
             contacts.ended_dissipation = contacts.dissipated();
             contacts.list.clear();
         }
+        self.state.wall_controls.resize(model.walls.len(), WallControl::Velocity);
         self.pipeline.rebuild(&self.state);
         self.update_time_step()?;
         Ok(result)

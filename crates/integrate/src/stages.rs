@@ -8,6 +8,7 @@ use crate::energy::PendingWork;
 use crate::integrator::{leapfrog_step, StepWork};
 use crate::links::LinkUpdate;
 use crate::pressure::add_pressure_forces;
+use crate::servo::steer_walls;
 use crate::settings::TimeStep;
 use crate::simulation::Simulation;
 use crate::time_step::{critical_step_from_stiffness, p_wave_time_step, StiffnessSums};
@@ -88,7 +89,8 @@ impl Simulation {
         let appeared = self.contact_stage(previous);
         let link_sums = self.link_stage(previous);
         let load_work = self.external_load_stage(previous);
-        let work = self.integration_stage(previous, dt);
+        let walls = self.wall_stage(dt);
+        let work = self.integration_stage(previous, dt, walls);
         self.state.clock.previous_dt = dt;
         self.state.clock.time += dt;
         self.state.clock.steps += 1;
@@ -213,9 +215,34 @@ impl Simulation {
             || self.pipeline.force_hook.is_some()
     }
 
+    /// Walls: the force and the contact stiffness of the bodies on each wall at t (kept for
+    /// [`Simulation::wall_forces`]), then the servo of each stress-controlled wall sets its
+    /// normal velocity for the step from t to t + dt (see `servo.rs`). Returns the power of
+    /// the walls at t with the velocities they moved with over the step before, and with the
+    /// velocities they move with over the step after: the two halves of their trapezoidal
+    /// work (timed with the integration, which moves the walls).
+    fn wall_stage(&mut self, dt: Real) -> WallPower {
+        let t0 = self.pipeline.timers.start();
+        let walls = self.state.model.walls.len();
+        self.pipeline.walls.sum(&self.state.contacts.list, walls);
+        let before = self.wall_power();
+        let steered = steer_walls(
+            &mut self.state.model.walls,
+            &self.state.wall_controls,
+            &self.pipeline.walls,
+            dt,
+        );
+        let after = if steered { self.wall_power() } else { before };
+        self.pipeline.timers.stop(Stage::Integration, t0);
+        WallPower { before, after }
+    }
+
     /// Integration: the leapfrog with damping (velocities kicked over (dt₀ + dt)/2, positions
-    /// moved over `dt`), then the walls move.
-    fn integration_stage(&mut self, previous: Real, dt: Real) -> StepWork {
+    /// moved over `dt`), then the walls move with their velocities. The walls' work at t is
+    /// trapezoidal, as the other works: `walls.before·dt₀/2` over the step before (with the
+    /// velocities the walls moved with then) and `walls.after·dt/2` over the step after (with
+    /// the velocities they move with now, which a servo may have just changed).
+    fn integration_stage(&mut self, previous: Real, dt: Real, walls: WallPower) -> StepWork {
         let t0 = self.pipeline.timers.start();
         let g = self.state.settings.gravity;
         let mut work = leapfrog_step(
@@ -227,9 +254,8 @@ impl Simulation {
             previous,
             dt,
         );
-        let walls = self.wall_power();
-        work.boundary += 0.5 * walls * previous;
-        work.boundary_next += 0.5 * walls * dt;
+        work.boundary += 0.5 * walls.before * previous;
+        work.boundary_next += 0.5 * walls.after * dt;
         for wall in &mut self.state.model.walls {
             wall.point += wall.velocity * dt;
         }
@@ -432,6 +458,15 @@ impl Simulation {
             },
         }
     }
+}
+
+/// The power of the walls at t, `Σ F·v_wall` over wall contacts (W), with two velocities.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct WallPower {
+    /// With the velocities the walls moved with over the step before t.
+    before: Real,
+    /// With the velocities they move with over the step after t.
+    after: Real,
 }
 
 /// Adds a contact's stiffness to the particles carrying its two sites (the full contact

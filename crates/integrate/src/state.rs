@@ -7,6 +7,7 @@ use crate::contacts::{Contact, Contacts};
 use crate::energy::EnergyAccount;
 use crate::links::Links;
 use crate::pressure::{check_pressure, Pressure};
+use crate::servo::{check_controls, WallControl};
 use crate::settings::{Load, Ramp, Settings};
 use crate::time_step::StiffnessSums;
 use crate::SimulationError;
@@ -33,8 +34,8 @@ pub struct Clock {
 }
 
 /// Everything a simulation needs to continue exactly where it was: the model, settings,
-/// links and contacts with their history, loads, clock, time-step bookkeeping, energy terms
-/// and warnings. A simulation rebuilt from it with [`crate::Simulation::from_state`]
+/// links and contacts with their history, loads, wall controls, clock, time-step
+/// bookkeeping, energy terms and warnings. A simulation rebuilt from it with [`crate::Simulation::from_state`]
 /// continues bit-identically to the original (the user's force hook is not part of it).
 /// This is what a checkpoint stores.
 #[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
@@ -51,6 +52,9 @@ pub struct State {
     pub loads: Vec<Load>,
     /// Pressures on PFacets (follower loads).
     pub pressures: Vec<Pressure>,
+    /// How each wall moves, one per wall of the model (the servo of a stress-controlled wall
+    /// sets its velocity each step; the velocity itself is the wall's, in the model).
+    pub wall_controls: Vec<WallControl>,
     /// Time, steps, time step.
     pub clock: Clock,
     /// Energy terms, pending works, energy watch.
@@ -61,9 +65,11 @@ pub struct State {
 
 impl State {
     /// The state of a simulation of `model` with `settings` before its first step: one beam
-    /// link per connection at rest, no contact, no load, no time step chosen yet (`dt` 0).
+    /// link per connection at rest, no contact, no load, every wall with the velocity it has,
+    /// no time step chosen yet (`dt` 0).
     pub(crate) fn initial(model: Model, settings: Settings) -> Self {
         let links = Links::from_model(&model, settings.link_mode);
+        let wall_controls = vec![WallControl::Velocity; model.walls.len()];
         State {
             model,
             settings,
@@ -71,6 +77,7 @@ impl State {
             contacts: Contacts::default(),
             loads: Vec::new(),
             pressures: Vec::new(),
+            wall_controls,
             clock: Clock::default(),
             energy: EnergyAccount::default(),
             warnings: Vec::new(),
@@ -86,11 +93,12 @@ impl State {
 
     /// Checks the whole state as [`crate::Simulation::new`] checks a new one, and for
     /// consistency between its parts (a state read from a file may be damaged): links,
-    /// stiffness sums, loads, pressures and contacts that fit the model, a positive finite
-    /// time step.
+    /// stiffness sums, loads, pressures and contacts that fit the model, one valid control
+    /// per wall, a positive finite time step.
     pub(crate) fn check(&self) -> Result<(), SimulationError> {
         State::check_parts(&self.model, &self.settings)?;
         check_pressures(&self.pressures, &self.model)?;
+        check_controls(&self.wall_controls, self.model.walls.len())?;
         if !self.is_consistent() {
             return Err(SimulationError::Setting {
                 what: "simulation state".into(),

@@ -6,7 +6,7 @@ use flexdem_contact::Material;
 use flexdem_elements::builders::{chain, straight_line, StructureOptions};
 use flexdem_elements::Model;
 use flexdem_geom::Vec3;
-use flexdem_integrate::{Settings, Simulation};
+use flexdem_integrate::{Settings, Simulation, StressControl, WallControl};
 use flexdem_io::checkpoint::{
     read_checkpoint, restore_checkpoint, write_checkpoint, Checkpoint, CheckpointError,
     OutputProgress, CHECKPOINT_HEADER_LEN, CHECKPOINT_VERSION,
@@ -173,6 +173,44 @@ fn a_run_restarted_from_a_checkpoint_file_continues_bit_identically() {
     assert_same_state(&a, &b);
 }
 
+/// Four spheres on a floor pressed by a servo platen (no gravity), checkpointed while the
+/// platen is still finding its stress: the restored run moves the platen and the spheres
+/// exactly as the uninterrupted one.
+#[test]
+fn a_run_with_a_servo_wall_restarted_from_a_checkpoint_continues_bit_identically() {
+    let mut model = Model::new();
+    let m = model.add_material(Material::new(1e8, 0.3, 2600.0, 0.5).unwrap()).unwrap();
+    let r = 0.01;
+    model.add_wall(Vec3::zeros(), Vec3::z(), m).unwrap();
+    model.add_wall(Vec3::new(0.0, 0.0, 4.2 * r), -Vec3::z(), m).unwrap();
+    // 1 µm apart: spheres that touch exactly make round-off forces that the energy watch,
+    // with nothing else to measure them against, takes for energy created
+    for (x, z) in [(r, r), (3.2 * r, r), (r, 3.0 * r), (3.3 * r, 3.0 * r)] {
+        model.add_sphere(Vec3::new(x, r, z + 1e-6 * z / r), r, m).unwrap();
+    }
+    let settings = Settings { damping: 0.2, ..Settings::default() };
+    let mut a = Simulation::new(model, settings).unwrap();
+    let servo = StressControl { target: 2e4, area: 8.0 * r * r, gain: None, max_speed: 0.05 };
+    a.set_wall_control(1, WallControl::Stress(servo)).unwrap();
+    while a.wall_forces()[1] == Vec3::zeros() {
+        assert!(a.steps() < 10_000, "the platen never touched the spheres");
+        a.step().unwrap();
+    }
+    a.run(50).unwrap();
+    let moving = a.model().walls[1].velocity;
+    assert!(moving.z != 0.0 && moving.z != -0.05, "the servo is not steering: {moving:?}");
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("servo.ckp");
+    write_checkpoint(&path, &checkpoint_of(&a)).unwrap();
+    a.run(1500).unwrap();
+    let (mut b, _) = restore_checkpoint(&path).unwrap();
+    assert_eq!(b.wall_controls(), &[WallControl::Velocity, WallControl::Stress(servo)]);
+    b.run(1500).unwrap();
+    assert_same_state(&a, &b);
+    assert_eq!(a.wall_forces(), b.wall_forces());
+    assert_ne!(a.model().walls[1].velocity, moving, "the platen should have moved on");
+}
+
 #[test]
 fn a_checkpoint_round_trips_bit_exactly() {
     let dir = tempfile::tempdir().unwrap();
@@ -313,9 +351,11 @@ fn foreign_and_odd_files_give_their_error() {
     assert!(matches!(empty, Err(CheckpointError::TooShort { len: 0, .. })), "{empty:?}");
 
     // 2: the format of the engine's former `Snapshot`, before the `State` of version 3;
-    // 3: the `State` before its pressures on PFacets
-    let older = [(CHECKPOINT_VERSION + 1, "newer"), (0, "older"), (2, "older"), (3, "older")];
-    assert_eq!(CHECKPOINT_VERSION, 4);
+    // 3: the `State` before the wall controls of version 4;
+    // 4: the `State` before its pressures on PFacets
+    let older =
+        [(CHECKPOINT_VERSION + 1, "newer"), (0, "older"), (2, "older"), (3, "older"), (4, "older")];
+    assert_eq!(CHECKPOINT_VERSION, 5);
     for (version, word) in older {
         let mut bytes = valid.to_vec();
         bytes[8..12].copy_from_slice(&version.to_le_bytes());
@@ -418,13 +458,18 @@ fn damaged_contacts_and_counters_are_refused() {
     while sim.contacts().is_empty() {
         sim.run(1).unwrap();
     }
-    let damages: [fn(&mut Checkpoint); 6] = [
+    let damages: [fn(&mut Checkpoint); 8] = [
         |c| c.state.contacts.list[0].site2.weights[0] = f64::NAN,
         |c| c.state.contacts.list[0].state.overlap_offset = -1.0,
         |c| c.state.contacts.list[0].site2.weights = [0.7, 0.7, 0.7],
         |c| c.state.contacts.list[0].state.normal *= 2.0,
         |c| c.state.contacts.list[0].params.kn = f64::INFINITY,
         |c| c.state.clock.dt_updated_at = c.state.clock.steps + 5,
+        |c| c.state.wall_controls.clear(),
+        |c| {
+            let servo = StressControl { target: 1e3, area: f64::NAN, gain: None, max_speed: 1.0 };
+            c.state.wall_controls[0] = WallControl::Stress(servo);
+        },
     ];
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("damaged.ckp");

@@ -66,6 +66,6 @@ pub use series::{
 pub use table::{format_number, CsvSeries};
 pub use vtk::{ArrayValues, CellKind, DataArray, PolyData};
 pub use writer::{
-    frame_file_name, pvd_path, Output, OutputProgress, OutputReport, CSV_FILE, PLOT_FILE, PVD_FILE,
-    PVD_REWRITE_PERIOD,
+    frame_file_name, pvd_path, write_frame, Output, OutputProgress, OutputReport, CSV_FILE,
+    PLOT_FILE, PVD_FILE, PVD_REWRITE_PERIOD,
 };

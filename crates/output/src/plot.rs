@@ -22,6 +22,9 @@ fn quantity_label(quantity: &Quantity) -> &'static str {
         Quantity::ForceOnParticles(_) => "force (N)",
         Quantity::ContactCount => "contacts",
         Quantity::BrokenLinks => "broken links",
+        Quantity::WallForce(_) => "force (N)",
+        Quantity::WallStress { .. } | Quantity::Stress { .. } => "stress (Pa)",
+        Quantity::SolidFraction(_) => "solid fraction",
         Quantity::EnclosedVolume { .. } => "volume (m³)",
     }
 }

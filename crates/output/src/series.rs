@@ -3,7 +3,10 @@
 
 use crate::error::OutputError;
 use flexdem_geom::{Real, Vec3};
-use flexdem_integrate::Simulation;
+use flexdem_integrate::{
+    deviator_stress, love_weber_stress, mean_stress, solid_fraction, wall_normal_stress, Region,
+    Simulation,
+};
 use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
 
@@ -25,6 +28,30 @@ pub enum Quantity {
     ContactCount,
     /// Number of broken links: 1 column.
     BrokenLinks,
+    /// Force the bodies put on a wall at the last step (N, `Simulation::wall_forces`):
+    /// 3 columns `fx, fy, fz`.
+    WallForce(u32),
+    /// Normal stress on a wall (Pa, compression positive): its normal force over `area`
+    /// (m²): 1 column `normal_stress`.
+    WallStress {
+        /// The wall.
+        wall: u32,
+        /// The area the force is spread over (m²).
+        area: Real,
+    },
+    /// The Love–Weber average stress of the free spheres whose centres are in `region` (Pa,
+    /// compression positive, `flexdem_integrate::love_weber_stress`) over `volume` (m³; by
+    /// default the region's): 8 columns, the symmetric part `sxx, syy, szz, sxy, sxz, syz`,
+    /// then the mean stress `mean_stress` and the deviator `deviator_stress`.
+    Stress {
+        /// Which spheres count.
+        region: Region,
+        /// The volume the sum is divided by (m³), None: the region's.
+        volume: Option<Real>,
+    },
+    /// The solid fraction of a region (centre counting, `flexdem_integrate::solid_fraction`):
+    /// 1 column `solid_fraction`.
+    SolidFraction(Region),
     /// Volume enclosed by the PFacets of a structure (m³), each of its open ends closed by
     /// the plane of one of `walls` (the nearest; one per open end, none for a closed shell):
     /// 1 column `volume` (see [`flexdem_elements::structure_volume`]; NaN if it cannot be
@@ -63,21 +90,24 @@ pub struct OutputSettings {
 }
 
 /// Names of the energy columns, in the order of [`energy_values`].
-const ENERGY_TERMS: [&str; 10] = [
+const ENERGY_TERMS: [&str; 13] = [
     "kinetic_translation",
     "kinetic_rotation",
     "elastic_links",
     "elastic_contacts",
     "gravity_work",
     "load_work",
+    "boundary_work",
+    "contact_births",
     "damping",
     "links_dissipated",
     "friction",
+    "contact_releases",
     "balance",
 ];
 
 /// The energy terms of a simulation in the order of [`ENERGY_TERMS`] (J).
-fn energy_values(sim: &Simulation) -> [Real; 10] {
+fn energy_values(sim: &Simulation) -> [Real; 13] {
     let e = sim.energy();
     [
         e.kinetic_translation,
@@ -86,16 +116,41 @@ fn energy_values(sim: &Simulation) -> [Real; 10] {
         e.elastic_contacts,
         e.gravity_work,
         e.load_work,
+        e.boundary_work,
+        e.contact_births,
         e.damping,
         e.links_dissipated,
         e.friction,
+        e.contact_releases,
         e.balance(),
+    ]
+}
+
+/// Names of the stress columns, in the order of [`stress_values`].
+const STRESS_COMPONENTS: [&str; 8] =
+    ["sxx", "syy", "szz", "sxy", "sxz", "syz", "mean_stress", "deviator_stress"];
+
+/// The Love–Weber stress of the spheres in `region` over `volume`, in the order of
+/// [`STRESS_COMPONENTS`] (Pa).
+fn stress_values(sim: &Simulation, region: &Region, volume: Option<Real>) -> [Real; 8] {
+    let s = love_weber_stress(sim.model(), sim.contacts(), region, volume);
+    let sym = |i: usize, j: usize| 0.5 * (s[(i, j)] + s[(j, i)]);
+    [
+        s[(0, 0)],
+        s[(1, 1)],
+        s[(2, 2)],
+        sym(0, 1),
+        sym(0, 2),
+        sym(1, 2),
+        mean_stress(&s),
+        deviator_stress(&s),
     ]
 }
 
 /// Column names of one series, each `NAME_COMPONENT_UNIT`: `tip_x_m`, `tip_vx_m_per_s`,
 /// `tip_wx_rad_per_s`, `e_kinetic_translation_J`, `load_fx_N`, `n_count`,
-/// `sample_volume_m3`.
+/// `top_normal_stress_Pa`, `sample_szz_Pa`, `sample_mean_stress_Pa`, `sample_solid_fraction`,
+/// `membrane_volume_m3`.
 pub fn series_columns(spec: &SeriesSpec) -> Vec<String> {
     let name = &spec.name;
     let triple = |prefix: &str, unit: &str| -> Vec<String> {
@@ -108,6 +163,12 @@ pub fn series_columns(spec: &SeriesSpec) -> Vec<String> {
         Quantity::Energy => ENERGY_TERMS.iter().map(|t| format!("{name}_{t}_J")).collect(),
         Quantity::ForceOnParticles(_) => triple("f", "N"),
         Quantity::ContactCount | Quantity::BrokenLinks => vec![format!("{name}_count")],
+        Quantity::WallForce(_) => triple("f", "N"),
+        Quantity::WallStress { .. } => vec![format!("{name}_normal_stress_Pa")],
+        Quantity::Stress { .. } => {
+            STRESS_COMPONENTS.iter().map(|c| format!("{name}_{c}_Pa")).collect()
+        }
+        Quantity::SolidFraction(_) => vec![format!("{name}_solid_fraction")],
         Quantity::EnclosedVolume { .. } => vec![format!("{name}_volume_m3")],
     }
 }
@@ -119,9 +180,9 @@ pub fn header_columns(series: &[SeriesSpec]) -> Vec<String> {
     columns
 }
 
-/// Checks a series list against a simulation: names valid and distinct, particle ids in range,
-/// selections not empty, enclosed volumes measurable (structure and walls exist, one wall per
-/// open end).
+/// Checks a series list against a simulation: names valid and distinct, particle and wall ids
+/// in range, selections not empty, areas, volumes and regions valid, enclosed volumes
+/// measurable (structure and walls exist, one wall per open end).
 pub fn validate_series(series: &[SeriesSpec], sim: &Simulation) -> Result<(), OutputError> {
     let count = sim.model().particles.pos.len();
     for (i, spec) in series.iter().enumerate() {
@@ -160,12 +221,46 @@ pub fn validate_series(series: &[SeriesSpec], sim: &Simulation) -> Result<(), Ou
                 problem: format!("particle {bad} does not exist (the model has {count})"),
             });
         }
-        if let Quantity::EnclosedVolume { structure, walls } = &spec.quantity {
-            enclosed_volume(sim, *structure, walls)
-                .map_err(|problem| OutputError::Series { series: spec.name.clone(), problem })?;
-        }
+        check_measure(&spec.quantity, sim)
+            .map_err(|problem| OutputError::Series { series: spec.name.clone(), problem })?;
     }
     Ok(())
+}
+
+/// What is wrong with the wall, area, region or volume of a quantity, or what keeps an
+/// enclosed volume from being measured, if anything.
+fn check_measure(quantity: &Quantity, sim: &Simulation) -> Result<(), String> {
+    let walls = sim.model().walls.len();
+    let wall_exists = |w: u32| {
+        if (w as usize) < walls {
+            Ok(())
+        } else {
+            Err(format!("wall {w} does not exist (the model has {walls})"))
+        }
+    };
+    let positive = |x: Real, what: &str| {
+        if x > 0.0 && x.is_finite() {
+            Ok(())
+        } else {
+            Err(format!("the {what} is {x}: expected a finite number > 0"))
+        }
+    };
+    match quantity {
+        Quantity::WallForce(w) => wall_exists(*w),
+        Quantity::WallStress { wall, area } => {
+            wall_exists(*wall)?;
+            positive(*area, "area (m²)")
+        }
+        Quantity::Stress { region, volume } => {
+            region.validate().map_err(|e| e.to_string())?;
+            volume.map_or(Ok(()), |v| positive(v, "volume (m³)"))
+        }
+        Quantity::SolidFraction(region) => region.validate().map_err(|e| e.to_string()),
+        Quantity::EnclosedVolume { structure, walls } => {
+            enclosed_volume(sim, *structure, walls).map(|_| ())
+        }
+        _ => Ok(()),
+    }
 }
 
 /// The volume enclosed by the PFacets of `structure`, closed by the current planes of
@@ -217,6 +312,23 @@ pub fn series_values(spec: &SeriesSpec, sim: &Simulation, row: &mut Vec<Real>) {
                 .count();
             row.push(broken as Real);
         }
+        Quantity::WallForce(w) => {
+            push_vec3(row, sim.wall_forces().get(*w as usize).copied().unwrap_or_default())
+        }
+        Quantity::WallStress { wall, area } => {
+            let stress = match (
+                sim.model().walls.get(*wall as usize),
+                sim.wall_forces().get(*wall as usize),
+            ) {
+                (Some(w), Some(f)) => wall_normal_stress(w, f, *area),
+                _ => 0.0,
+            };
+            row.push(stress);
+        }
+        Quantity::Stress { region, volume } => {
+            row.extend_from_slice(&stress_values(sim, region, *volume))
+        }
+        Quantity::SolidFraction(region) => row.push(solid_fraction(&sim.model().particles, region)),
         Quantity::EnclosedVolume { structure, walls } => {
             row.push(enclosed_volume(sim, *structure, walls).unwrap_or(Real::NAN));
         }

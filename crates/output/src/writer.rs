@@ -206,22 +206,14 @@ impl Output {
     /// Writes the four `.vtp` files of the current state and rewrites the `.pvd`.
     fn write_frame(&mut self, sim: &Simulation) -> Result<(), OutputError> {
         let step = sim.steps();
-        let parts = [
-            (PARTS[0], particles_polydata(sim)),
-            (PARTS[1], connections_polydata(sim)),
-            (PARTS[2], pfacets_polydata(sim)),
-            (PARTS[3], contacts_polydata(sim)),
-        ];
-        let mut entries = Vec::with_capacity(parts.len());
-        for (part, (name, data)) in parts.iter().enumerate() {
-            let file = frame_file_name(name, step);
-            let path = self.settings.directory.join(&file);
-            files::write_atomically(&path, data.to_xml().as_bytes())?;
+        let written = write_parts(&self.settings.directory, sim)?;
+        let mut entries = Vec::with_capacity(written.len());
+        for (part, (file, path)) in written.into_iter().enumerate() {
             self.note_file(path);
             entries.push(PvdEntry {
                 time: sim.time(),
                 part: part as u32,
-                name: name.to_string(),
+                name: PARTS[part].to_string(),
                 file,
             });
         }
@@ -265,6 +257,35 @@ impl Output {
 
 /// The parts of a frame, in the order of their part numbers in the `.pvd`.
 const PARTS: [&str; 4] = ["particles", "connections", "pfacets", "contacts"];
+
+/// Writes the four `.vtp` files of `sim`'s current state into `directory`, in the order of
+/// [`PARTS`]; returns the file name and path of each.
+fn write_parts(directory: &Path, sim: &Simulation) -> Result<Vec<(String, PathBuf)>, OutputError> {
+    let step = sim.steps();
+    let parts = [
+        particles_polydata(sim),
+        connections_polydata(sim),
+        pfacets_polydata(sim),
+        contacts_polydata(sim),
+    ];
+    let mut written = Vec::with_capacity(parts.len());
+    for (name, data) in PARTS.iter().zip(parts) {
+        let file = frame_file_name(name, step);
+        let path = directory.join(&file);
+        files::write_atomically(&path, data.to_xml().as_bytes())?;
+        written.push((file, path));
+    }
+    Ok(written)
+}
+
+/// Writes the frame of `sim`'s current state into `directory` (created if missing): the
+/// four `.vtp` files an [`Output`] writes at this step (`particles_N.vtp`,
+/// `connections_N.vtp`, `pfacets_N.vtp`, `contacts_N.vtp`), without a `.pvd`. Returns their
+/// paths, in that order. For a frame off an output's schedule (a script's).
+pub fn write_frame(directory: &Path, sim: &Simulation) -> Result<Vec<PathBuf>, OutputError> {
+    files::create_directory(directory)?;
+    Ok(write_parts(directory, sim)?.into_iter().map(|(_, path)| path).collect())
+}
 
 /// Checks `settings` against `sim`: output periods of at least one step, series to plot when
 /// a plot is asked for, valid series.

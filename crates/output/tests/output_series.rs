@@ -5,7 +5,7 @@ use flexdem_contact::Material;
 use flexdem_elements::builders::{chain, straight_line, StructureOptions};
 use flexdem_elements::Model;
 use flexdem_geom::{Real, Vec3};
-use flexdem_integrate::{Settings, Simulation};
+use flexdem_integrate::{Region, Settings, Simulation};
 use flexdem_output::{format_number, Output, OutputError, OutputSettings, Quantity, SeriesSpec};
 use std::path::Path;
 
@@ -62,9 +62,12 @@ fn expected_row(sim: &Simulation) -> Vec<Real> {
         e.elastic_contacts,
         e.gravity_work,
         e.load_work,
+        e.boundary_work,
+        e.contact_births,
         e.damping,
         e.links_dissipated,
         e.friction,
+        e.contact_releases,
         e.balance(),
     ]);
     row.extend_from_slice(&[f.x, f.y, f.z, sim.contacts().len() as Real, 0.0]);
@@ -126,9 +129,12 @@ fn csv_rows_hold_the_simulation_values_and_the_plot_is_a_png() {
         "elastic_contacts",
         "gravity_work",
         "load_work",
+        "boundary_work",
+        "contact_births",
         "damping",
         "links_dissipated",
         "friction",
+        "contact_releases",
         "balance",
     ];
     let mut want = vec!["time_s".to_string(), "step".into()];
@@ -200,12 +206,65 @@ fn an_output_directory_that_is_a_file_is_an_error_naming_it() {
     assert_eq!(std::fs::read_to_string(&file).unwrap(), "not a folder");
 }
 
+/// The series of walls and samples on the sphere resting on its wall: the wall carries what
+/// the sphere's contact puts on it, the sphere's Love–Weber stress over a box is its
+/// contact's branch times force over the volume, its solid fraction its volume over the box.
+#[test]
+fn wall_and_sample_series_give_their_columns_and_values() {
+    let mut sim = scene();
+    sim.run(50).unwrap();
+    let spec = |name: &str, quantity| SeriesSpec { name: name.into(), quantity };
+    let block = Region::Box { min: Vec3::repeat(-0.1), max: Vec3::repeat(0.1) };
+    let series = vec![
+        spec("floor", Quantity::WallForce(0)),
+        spec("floor_s", Quantity::WallStress { wall: 0, area: 0.01 }),
+        spec("sample", Quantity::Stress { region: block, volume: Some(0.004) }),
+        spec("phi", Quantity::SolidFraction(block)),
+    ];
+    flexdem_output::validate_series(&series, &sim).unwrap();
+    let columns = flexdem_output::header_columns(&series);
+    assert_eq!(
+        columns[2..],
+        [
+            "floor_fx_N",
+            "floor_fy_N",
+            "floor_fz_N",
+            "floor_s_normal_stress_Pa",
+            "sample_sxx_Pa",
+            "sample_syy_Pa",
+            "sample_szz_Pa",
+            "sample_sxy_Pa",
+            "sample_sxz_Pa",
+            "sample_syz_Pa",
+            "sample_mean_stress_Pa",
+            "sample_deviator_stress_Pa",
+            "phi_solid_fraction",
+        ]
+    );
+    let row = flexdem_output::row_values(&series, &sim);
+    assert_eq!(row.len(), columns.len());
+    let contact = sim.contacts().iter().find(|c| c.site2.nodes[0] == 0).unwrap();
+    let force = contact.forces.force_on_2;
+    assert!(force.z > 0.0, "the sphere is not pressed on its wall: {force:?}");
+    assert_eq!(row[2..5], [-force.x, -force.y, -force.z]);
+    assert_eq!(row[5], force.z / 0.01);
+    // the sphere's only contact: σzz = −(x_c − x_p)_z·f_z / V, compression positive
+    let branch = contact.point - sim.model().particles.pos[0];
+    let szz = -branch.z * force.z / 0.004;
+    assert!(szz > 0.0 && (row[8] / szz - 1.0).abs() < 1e-12, "{} vs {szz}", row[8]);
+    assert!((row[12] - row[8] / 3.0).abs() < 1e-9 * szz, "mean stress {}", row[12]);
+    let volume = 4.0 / 3.0 * std::f64::consts::PI * 0.05f64.powi(3);
+    assert!((row[14] - volume / 0.008).abs() < 1e-15, "solid fraction {}", row[14]);
+}
+
 #[test]
 fn bad_settings_and_series_are_errors() {
     let sim = scene();
     let dir = tempfile::tempdir().unwrap();
     let base = settings(dir.path());
     let spec = |name: &str, quantity| SeriesSpec { name: name.into(), quantity };
+    let block = Region::Box { min: Vec3::repeat(-1.0), max: Vec3::repeat(1.0) };
+    let flat = Region::Box { min: Vec3::repeat(-1.0), max: Vec3::new(1.0, 1.0, -1.0) };
     let cases = [
         OutputSettings { vtk_every: Some(0), ..base.clone() },
         OutputSettings { series_every: Some(0), ..base.clone() },
@@ -222,6 +281,20 @@ fn bad_settings_and_series_are_errors() {
             series: vec![spec("e", Quantity::Energy), spec("e", Quantity::ContactCount)],
             ..base.clone()
         },
+        OutputSettings { series: vec![spec("w", Quantity::WallForce(1))], ..base.clone() },
+        OutputSettings {
+            series: vec![spec("w", Quantity::WallStress { wall: 0, area: 0.0 })],
+            ..base.clone()
+        },
+        OutputSettings {
+            series: vec![spec("s", Quantity::Stress { region: flat, volume: None })],
+            ..base.clone()
+        },
+        OutputSettings {
+            series: vec![spec("s", Quantity::Stress { region: block, volume: Some(-1.0) })],
+            ..base.clone()
+        },
+        OutputSettings { series: vec![spec("phi", Quantity::SolidFraction(flat))], ..base.clone() },
     ];
     for settings in cases {
         let err = Output::new(&settings, &sim).unwrap_err();

@@ -307,3 +307,42 @@ fn a_model_without_structures_or_contacts_writes_empty_parts() {
     }
     assert_eq!(read_piece(&dir.path().join("particles_000001.vtp")).num_points(), 1);
 }
+
+#[test]
+fn a_frame_written_off_schedule_is_the_outputs_frame_at_that_step() {
+    let tmp = tempfile::tempdir().unwrap();
+    let (scheduled, mine) = (tmp.path().join("run"), tmp.path().join("mine").join("deeper"));
+    let mut sim = scene();
+    let settings = OutputSettings {
+        directory: scheduled.clone(),
+        vtk_every: Some(5),
+        series_every: None,
+        series: Vec::new(),
+        plot: false,
+    };
+    let mut out = Output::new(&settings, &sim).unwrap();
+    while sim.steps() < 10 {
+        sim.step().unwrap();
+        out.record(&sim).unwrap();
+    }
+    let written = flexdem_output::write_frame(&mine, &sim).unwrap();
+    let names: Vec<String> =
+        written.iter().map(|p| p.file_name().unwrap().to_string_lossy().into_owned()).collect();
+    assert_eq!(
+        names,
+        [
+            "particles_000010.vtp",
+            "connections_000010.vtp",
+            "pfacets_000010.vtp",
+            "contacts_000010.vtp"
+        ]
+    );
+    for (path, name) in written.iter().zip(&names) {
+        assert_eq!(path.parent(), Some(mine.as_path()));
+        assert_eq!(std::fs::read(path).unwrap(), std::fs::read(scheduled.join(name)).unwrap());
+    }
+    // read back by an independent reader: every particle
+    assert_eq!(points(&read_piece(&written[0])).len(), sim.model().particles.len());
+    // no .pvd of its own
+    assert!(!mine.join(flexdem_output::PVD_FILE).exists());
+}

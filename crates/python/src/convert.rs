@@ -1,10 +1,12 @@
 //! A Python dict (nested dicts, lists, tuples, str, int, float, bool, numpy arrays and
 //! scalars, paths) to a TOML table, so that a script builds a scene with the keys of a scene
-//! file and the scene reader checks it as it checks a file.
+//! file and the scene reader checks it as it checks a file; and a scene file to such a dict
+//! (a script's starting point, changed then read back).
 
 use crate::errors::SceneError;
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
+use std::path::Path;
 
 /// Nesting deeper than this is refused: a scene is a few levels deep, and a dict that
 /// contains itself would otherwise recurse until the stack overflows.
@@ -100,4 +102,42 @@ fn to_value(obj: &Bound<'_, PyAny>, path: &str, depth: usize) -> PyResult<toml::
         "a {} has no TOML value (use str, int, float, bool, list or dict)",
         type_name(obj)
     )))
+}
+
+/// The TOML file at `path` as a dict of its keys (tables as dicts, arrays as lists); errors
+/// (a file that cannot be read, bad TOML syntax) as [`SceneError`] naming the file.
+pub(crate) fn read_toml_dict<'py>(py: Python<'py>, path: &Path) -> PyResult<Bound<'py, PyAny>> {
+    let text = std::fs::read_to_string(path).map_err(|e| {
+        SceneError::new_err(format!("{}: cannot read the scene file: {e}", path.display()))
+    })?;
+    let table: toml::Table = toml::from_str(&text).map_err(|e| {
+        SceneError::new_err(format!("{}: {}", path.display(), e.to_string().trim_end()))
+    })?;
+    to_python(py, &toml::Value::Table(table))
+}
+
+/// A TOML value as the Python value `to_value` turns back into it.
+fn to_python<'py>(py: Python<'py>, value: &toml::Value) -> PyResult<Bound<'py, PyAny>> {
+    Ok(match value {
+        toml::Value::String(s) => s.into_pyobject(py)?.into_any(),
+        toml::Value::Integer(i) => i.into_pyobject(py)?.into_any(),
+        toml::Value::Float(f) => f.into_pyobject(py)?.into_any(),
+        toml::Value::Boolean(b) => b.into_pyobject(py)?.to_owned().into_any(),
+        // scene files have no dates: their text, for the scene reader to refuse
+        toml::Value::Datetime(d) => d.to_string().into_pyobject(py)?.into_any(),
+        toml::Value::Array(items) => {
+            let list = PyList::empty(py);
+            for item in items {
+                list.append(to_python(py, item)?)?;
+            }
+            list.into_any()
+        }
+        toml::Value::Table(table) => {
+            let d = PyDict::new(py);
+            for (k, v) in table {
+                d.set_item(k, to_python(py, v)?)?;
+            }
+            d.into_any()
+        }
+    })
 }

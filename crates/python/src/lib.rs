@@ -11,13 +11,17 @@
 //!
 //! What Python sees: `Simulation` ([`simulation`]), the exceptions `SceneError` (a
 //! `ValueError`: bad input, with the command line's message) and `SimulationError` (a
-//! `RuntimeError`: a run that went wrong), `set_threads`, `threads` and `to_toml`. Every read
-//! of the engine's state goes through the `access` module.
+//! `RuntimeError`: a run that went wrong), `set_threads`, `threads`, `to_toml` and
+//! `scene_dict`. Every read of the engine's state goes through the `access` module; loads
+//! from Python are read by the scene reader (`loads`), the tracked series recorded as a run
+//! goes (`series`).
 
 mod access;
 mod arrays;
 mod convert;
 mod errors;
+mod loads;
+mod series;
 pub mod simulation;
 mod threads;
 
@@ -44,6 +48,14 @@ fn to_toml(scene: &Bound<'_, PyAny>) -> PyResult<String> {
     convert::dict_to_toml(scene)
 }
 
+/// The scene file at `path` as a dict with the keys of the file, to change and give to
+/// `Simulation.from_dict(scene, base_dir=path.parent)` (relative paths in it start from the
+/// file's folder). Raises `flexdem.SceneError` when the file cannot be read or is not TOML.
+#[pyfunction]
+fn scene_dict(py: Python<'_>, path: std::path::PathBuf) -> PyResult<Bound<'_, PyAny>> {
+    convert::read_toml_dict(py, &path)
+}
+
 /// The module `flexdem`.
 #[pymodule]
 #[pyo3(name = "flexdem")]
@@ -56,5 +68,6 @@ fn flexdem_python(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(set_threads, m)?)?;
     m.add_function(wrap_pyfunction!(thread_count, m)?)?;
     m.add_function(wrap_pyfunction!(to_toml, m)?)?;
+    m.add_function(wrap_pyfunction!(scene_dict, m)?)?;
     Ok(())
 }

@@ -3,13 +3,15 @@
 use crate::access::{self, ParticleColumn};
 use crate::arrays::{column, dict, rows};
 use crate::convert::dict_to_toml;
-use crate::errors::run_error;
-use crate::threads;
-use flexdem_run::{NoObserver, Run, RunError, RunLength, RunOptions, Stop};
-use flexdem_scene::{load_scene, parse_scene, Scene};
+use crate::errors::{run_error, SceneError, SimulationError};
+use crate::series::SeriesRecorder;
+use crate::{loads, threads};
+use flexdem_io::checkpoint::read_checkpoint;
+use flexdem_run::{Run, RunError, RunLength, RunOptions, Stop};
+use flexdem_scene::{load_scene, parse_scene, Scene, SceneNames};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use pyo3::types::{PyBool, PyDict};
+use pyo3::types::{PyBool, PyDict, PyList};
 use std::path::PathBuf;
 use std::sync::{Mutex, MutexGuard};
 
@@ -23,8 +25,18 @@ const SIGNAL_CHECK_STEPS: u64 = 1000;
 /// `step`; read its state as numpy arrays (`positions`, `contacts()`, `energy()`, ...).
 #[pyclass(name = "Simulation", module = "flexdem", frozen)]
 pub struct PySimulation {
-    /// The run; locked by each call (the stepping releases the GIL, not the run).
-    run: Mutex<Run>,
+    /// The run and what the module keeps beside it; locked by each call (the stepping
+    /// releases the GIL, not the lock).
+    inner: Mutex<Inner>,
+}
+
+/// A run with the scene's names (for the loads a script adds) and its series.
+struct Inner {
+    run: Run,
+    /// The scene's structures and sphere groups (unknown after a resume).
+    names: SceneNames,
+    /// The tracked series, recorded whether or not the output is written.
+    series: SeriesRecorder,
 }
 
 /// Where the output goes, from the `output` argument: None/False nothing, True the scene's
@@ -48,9 +60,14 @@ fn output_options(output: Option<&Bound<'_, PyAny>>) -> PyResult<RunOptions> {
 }
 
 impl PySimulation {
-    /// The run, locked.
-    fn lock(&self) -> MutexGuard<'_, Run> {
-        self.run.lock().unwrap_or_else(|p| p.into_inner())
+    /// The run and its companions, locked.
+    fn lock(&self) -> MutexGuard<'_, Inner> {
+        self.inner.lock().unwrap_or_else(|p| p.into_inner())
+    }
+
+    /// The module's simulation of `run`.
+    fn wrap(run: Run, names: SceneNames, series: SeriesRecorder) -> PySimulation {
+        PySimulation { inner: Mutex::new(Inner { run, names, series }) }
     }
 
     /// The simulation of `scene`, with the worker threads set up first.
@@ -63,8 +80,11 @@ impl PySimulation {
         let mut options = output_options(output)?;
         threads::prepare(py, threads, scene.threads)?;
         options.threads = threads;
+        let names = scene.names.clone();
+        // the scene's series, kept before `no_output` takes their period from the run
+        let series = SeriesRecorder::new(scene.output.series.clone(), scene.output.series_every);
         let run = py.detach(|| Run::new(scene, options)).map_err(run_error)?;
-        Ok(PySimulation { run: Mutex::new(run) })
+        Ok(PySimulation::wrap(run, names, series))
     }
 
     /// Advances `run` by up to `max_steps` on a rayon worker (the engine's parallel loops
@@ -73,8 +93,8 @@ impl PySimulation {
     fn advance(&self, py: Python<'_>, max_steps: u64) -> Result<Stop, RunError> {
         py.detach(|| {
             let mut guard = self.lock();
-            let run: &mut Run = &mut guard;
-            rayon::join(|| run.advance(Some(max_steps), &mut NoObserver), || ()).0
+            let Inner { run, series, .. } = &mut *guard;
+            rayon::join(|| run.advance(Some(max_steps), series), || ()).0
         })
     }
 }
@@ -154,8 +174,25 @@ impl PySimulation {
             threads::set(n)?;
         }
         let options = RunOptions { no_output: !output, threads, ..RunOptions::default() };
-        let run = py.detach(|| Run::resume(&path, options)).map_err(run_error)?;
-        Ok(PySimulation { run: Mutex::new(run) })
+        let (run, series) = py
+            .detach(|| {
+                let checkpoint =
+                    read_checkpoint(&path).map_err(|e| RunError::ReadCheckpoint(Box::new(e)))?;
+                let settings = &checkpoint.output;
+                let series = SeriesRecorder::new(settings.series.clone(), settings.series_every);
+                let folder = settings.directory.clone();
+                let run = Run::from_checkpoint(checkpoint, &path, options)?;
+                Ok((run, series, folder))
+            })
+            .map(|(run, mut series, folder): (Run, SeriesRecorder, PathBuf)| {
+                if output {
+                    // the rows before the checkpoint, as the resumed output kept them
+                    series.continue_csv(&folder);
+                }
+                (run, series)
+            })
+            .map_err(run_error)?;
+        Ok(PySimulation::wrap(run, SceneNames::unknown(), series))
     }
 
     /// Runs `steps` steps, or `duration` seconds of simulated time, or (neither given) to
@@ -184,7 +221,8 @@ impl PySimulation {
             }
         }
         let (scene_target, start) = {
-            let mut run = this.lock();
+            let mut guard = this.lock();
+            let run = &mut guard.run;
             let scene_target = run.target();
             let (steps_now, time_now) = (run.sim().steps(), run.sim().time());
             match (steps, duration) {
@@ -211,7 +249,8 @@ impl PySimulation {
                 }
             }
         })();
-        let mut run = this.lock();
+        let mut guard = this.lock();
+        let run = &mut guard.run;
         // the scene's run length again: what later checkpoints store
         run.set_target(scene_target);
         let done = run.sim().steps() - start;
@@ -227,7 +266,8 @@ impl PySimulation {
     /// `flexdem resume` continues it too).
     fn save_checkpoint(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
         py.detach(|| {
-            let mut run = self.lock();
+            let mut guard = self.lock();
+            let run = &mut guard.run;
             run.set_checkpoint_path(&path);
             run.save_checkpoint()
         })
@@ -240,8 +280,10 @@ impl PySimulation {
     fn finish<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let json = py
             .detach(|| {
-                let mut run = self.lock();
-                let summary = run.finish(&mut NoObserver)?;
+                let mut guard = self.lock();
+                let Inner { run, series, .. } = &mut *guard;
+                let summary = run.finish(series)?;
+                series.finish(run.sim());
                 serde_json::to_string(&summary).map_err(|e| RunError::Summary(e.to_string()))
             })
             .map_err(run_error)?;
@@ -251,55 +293,55 @@ impl PySimulation {
     /// Simulated time (s).
     #[getter]
     fn time(&self) -> f64 {
-        self.lock().sim().time()
+        self.lock().run.sim().time()
     }
 
     /// Steps done since the start of the simulation.
     #[getter]
     fn steps(&self) -> u64 {
-        self.lock().sim().steps()
+        self.lock().run.sim().steps()
     }
 
     /// The current time step (s).
     #[getter]
     fn dt(&self) -> f64 {
-        self.lock().sim().dt()
+        self.lock().run.sim().dt()
     }
 
     /// The critical time step at the last estimate (s).
     #[getter]
     fn critical_dt(&self) -> f64 {
-        self.lock().sim().critical_dt()
+        self.lock().run.sim().critical_dt()
     }
 
     /// Whether the scene's run length (`steps` or `duration`) is reached.
     #[getter]
     fn done(&self) -> bool {
-        self.lock().is_done()
+        self.lock().run.is_done()
     }
 
     /// Number of particles (free spheres and structure nodes).
     #[getter]
     fn particle_count(&self) -> usize {
-        access::particle_count(self.lock().sim())
+        access::particle_count(self.lock().run.sim())
     }
 
     /// Warnings raised by the engine so far.
     #[getter]
     fn warnings(&self) -> Vec<String> {
-        self.lock().sim().warnings().to_vec()
+        self.lock().run.sim().warnings().to_vec()
     }
 
     /// The scene file the simulation came from.
     #[getter]
     fn scene_file(&self) -> PathBuf {
-        self.lock().scene_file().to_path_buf()
+        self.lock().run.scene_file().to_path_buf()
     }
 
     /// The output folder (written only when the simulation was set up with `output`).
     #[getter]
     fn output_directory(&self) -> PathBuf {
-        self.lock().output_settings().directory.clone()
+        self.lock().run.output_settings().directory.clone()
     }
 
     /// Particle centres, n×3 (m).
@@ -329,19 +371,19 @@ impl PySimulation {
     /// Particle radii, n (m).
     #[getter]
     fn radii<'py>(&self, py: Python<'py>) -> Bound<'py, PyAny> {
-        column(py, access::radii(self.lock().sim()))
+        column(py, access::radii(self.lock().run.sim()))
     }
 
     /// Particle masses, n (kg).
     #[getter]
     fn masses<'py>(&self, py: Python<'py>) -> Bound<'py, PyAny> {
-        column(py, access::masses(self.lock().sim()))
+        column(py, access::masses(self.lock().run.sim()))
     }
 
     /// The structure of each particle, n; −1 for a free sphere.
     #[getter]
     fn structures<'py>(&self, py: Python<'py>) -> Bound<'py, PyAny> {
-        column(py, access::structures(self.lock().sim()))
+        column(py, access::structures(self.lock().run.sim()))
     }
 
     /// The contacts of the last step as a dict of arrays, one row per contact: `pairs`
@@ -350,7 +392,7 @@ impl PySimulation {
     /// `kind2`), `points` (n×3), `normals` (n×3, body 1 → body 2), `normal_force` (n,
     /// compression positive), `shear_force` and `force` (n×3, on body 2).
     fn contacts<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let t = access::contacts(self.lock().sim());
+        let t = access::contacts(self.lock().run.sim());
         dict(
             py,
             vec![
@@ -370,7 +412,7 @@ impl PySimulation {
     /// `normal_force` (m, compression positive), `shear_force` and `force` (m×3, on node
     /// 2); forces are zero before the first step.
     fn links<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let t = access::links(self.lock().sim());
+        let t = access::links(self.lock().run.sim());
         dict(
             py,
             vec![
@@ -388,7 +430,7 @@ impl PySimulation {
     /// `stored`, `put_in`, `taken_out`, `balance` (constant when the balance closes),
     /// `initial_balance`, `scale` and `relative_balance_error`.
     fn energy<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let terms = access::energy(self.lock().sim());
+        let terms = access::energy(self.lock().run.sim());
         let d = PyDict::new(py);
         for (k, v) in terms {
             d.set_item(k, v)?;
@@ -418,9 +460,87 @@ impl PySimulation {
         self.change(access::Change::ImposedVelocity(particles, velocity.into()))
     }
 
+    /// Adds a load for the rest of the run, given with the keys of a scene file's
+    /// `[[loads]]` table: `select` (a dict: `structure` with `side`, `spheres`, `ids`,
+    /// `box`, `plane`), `force` (N on each particle) or `total_force` (N, shared equally),
+    /// `moment` (N·m on each), `ramp` (`{"start": s, "duration": s}`, in simulated time since
+    /// the start). `box` and `plane` select by the current positions. Raises
+    /// `flexdem.SceneError` (a ValueError) with the scene reader's message; nothing is
+    /// added then.
+    #[pyo3(signature = (**load))]
+    fn add_load(&self, py: Python<'_>, load: Option<&Bound<'_, PyDict>>) -> PyResult<()> {
+        let load = load.cloned().unwrap_or_else(|| PyDict::new(py));
+        let list = PyList::new(py, [load])?;
+        let mut guard = self.lock();
+        let Inner { run, names, .. } = &mut *guard;
+        let parsed = loads::from_python(list.as_any(), run.sim(), names)?;
+        let sim = run.sim_mut();
+        for load in parsed {
+            sim.add_load(load).map_err(|e| SceneError::new_err(e.to_string()))?;
+        }
+        Ok(())
+    }
+
+    /// Replaces every load by `loads`, a list of dicts with the keys of `add_load` (an
+    /// empty list removes them all); all are checked first, nothing changes on an error.
+    fn set_loads(&self, loads: &Bound<'_, PyAny>) -> PyResult<()> {
+        let mut guard = self.lock();
+        let Inner { run, names, .. } = &mut *guard;
+        let parsed = loads::from_python(loads, run.sim(), names)?;
+        run.sim_mut().set_loads(parsed).map_err(|e| SceneError::new_err(e.to_string()))
+    }
+
+    /// The loads acting, as dicts that `set_loads` takes back: `select = {"ids": array}`,
+    /// `force` and `moment` on each particle (arrays of 3; a `total_force` is shared out
+    /// already), `ramp` when the load is ramped.
+    fn loads<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
+        loads::to_python(py, self.lock().run.sim().loads())
+    }
+
+    /// The tracked series (the scene's `[[output.series]]`) as a dict of numpy arrays, one
+    /// per column of the command line's `series.csv`: `time_s`, `step`, then
+    /// `NAME_COMPONENT_UNIT` (`impactor_position_z_m`, `e_kinetic_translation_J`, ...).
+    /// Rows are recorded as the CSV's, whether or not output is written: at the start, every
+    /// `series_every` steps, and at `finish`. A resumed simulation starts with the rows its
+    /// output kept (with `output=True`), else with none.
+    fn series<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        self.lock().series.to_dict(py)
+    }
+
+    /// Writes the series recorded so far as the command line's CSV to `path`.
+    fn write_series(&self, py: Python<'_>, path: PathBuf) -> PyResult<PathBuf> {
+        py.detach(|| {
+            let guard = self.lock();
+            let settings = guard.run.output_settings();
+            let own = settings.directory.join(flexdem_output::CSV_FILE);
+            if settings.series_every.is_some() && std::path::absolute(&path).ok() == Some(own) {
+                return Err(PyValueError::new_err(format!(
+                    "{}: the run writes this file itself; give another path",
+                    path.display()
+                )));
+            }
+            guard.series.write_csv(&path).map_err(|e| SimulationError::new_err(e.to_string()))
+        })?;
+        Ok(path)
+    }
+
+    /// Writes a VTK frame of the current state into `directory` (default: the output
+    /// folder), the files the command line writes at this step: `particles_N.vtp`,
+    /// `connections_N.vtp`, `pfacets_N.vtp`, `contacts_N.vtp` (N the step, 6 digits).
+    /// Returns their paths. The frame is not added to the run's `flexdem.pvd`.
+    #[pyo3(signature = (directory=None))]
+    fn write_frame(&self, py: Python<'_>, directory: Option<PathBuf>) -> PyResult<Vec<PathBuf>> {
+        py.detach(|| {
+            let guard = self.lock();
+            let folder = directory.unwrap_or_else(|| guard.run.output_settings().directory.clone());
+            flexdem_output::write_frame(&folder, guard.run.sim())
+        })
+        .map_err(|e| SimulationError::new_err(e.to_string()))
+    }
+
     fn __repr__(&self) -> String {
-        let run = self.lock();
-        let sim = run.sim();
+        let guard = self.lock();
+        let (run, sim) = (&guard.run, guard.run.sim());
         format!(
             "<flexdem.Simulation of {}: {} particles, step {}, t = {:.6e} s>",
             run.scene_file().display(),
@@ -434,11 +554,11 @@ impl PySimulation {
 impl PySimulation {
     /// Applies a change between stages; the engine's refusal as a ValueError.
     fn change(&self, change: access::Change) -> PyResult<()> {
-        access::apply(self.lock().sim_mut(), change).map_err(PyValueError::new_err)
+        access::apply(self.lock().run.sim_mut(), change).map_err(PyValueError::new_err)
     }
 
     /// One particle column as an n×3 array.
     fn vectors<'py>(&self, py: Python<'py>, c: ParticleColumn) -> PyResult<Bound<'py, PyAny>> {
-        rows(py, access::particle_vectors(self.lock().sim(), c), 3)
+        rows(py, access::particle_vectors(self.lock().run.sim(), c), 3)
     }
 }

@@ -1,6 +1,6 @@
 //! From a scene to a simulation: the model and settings to the engine, the loads and
-//! pressures added, the run length checked at the time step the engine chose; and the
-//! worker threads.
+//! pressures added and the wall controls set, the run length checked at the time step the
+//! engine chose; and the worker threads.
 
 use crate::error::RunError;
 use flexdem_integrate::Simulation;
@@ -21,8 +21,8 @@ pub struct SceneRest {
     pub source: PathBuf,
 }
 
-/// The simulation of `scene` with its loads and pressures, and the rest of the scene. Errors name the scene
-/// file; they are all bad input.
+/// The simulation of `scene` with its loads, pressures and wall controls, and the rest of the
+/// scene. Errors name the scene file; they are all bad input.
 pub fn build_simulation(scene: Scene) -> Result<(Simulation, SceneRest), RunError> {
     let source = scene.source.clone();
     let refused = |source_error| RunError::Simulation {
@@ -35,6 +35,9 @@ pub fn build_simulation(scene: Scene) -> Result<(Simulation, SceneRest), RunErro
     }
     for pressure in scene.pressures {
         sim.add_pressure(pressure).map_err(refused)?;
+    }
+    for (w, control) in scene.wall_controls.into_iter().enumerate() {
+        sim.set_wall_control(w as u32, control).map_err(refused)?;
     }
     // with dt = "auto" the number of steps of a duration is known only now
     check_step_count(scene.run, sim.dt())

@@ -165,3 +165,70 @@ fn a_script_moves_the_end_of_the_run_and_where_its_checkpoints_go() {
     assert!(resumed.is_done());
     assert_eq!(final_state(&resumed), final_state(&run));
 }
+
+/// A scene with a servo platen on a lattice of spheres, built as `flexdem run` builds it: the
+/// platen is under its servo and, at rest, its stress and the Love–Weber stress of the
+/// lattice in the series are the target's.
+#[test]
+fn a_scene_servo_wall_presses_its_sample_to_the_target_stress() {
+    let text = r#"
+[simulation]
+steps = 6000
+damping = 0.3
+
+[materials.glass]
+young = 1e8
+poisson = 0.3
+density = 2600
+friction_angle_deg = 30
+
+[[spheres]]
+kind = "lattice"
+material = "glass"
+radius = 0.01
+spacing = 0.0201
+box = { min = [0, 0, 0], max = [0.0603, 0.0603, 0.0603] }
+
+[[walls]]
+point = [0, 0, -1e-6]
+normal = [0, 0, 1]
+material = "glass"
+
+[[walls]]
+point = [0, 0, 0.0604]
+normal = [0, 0, -1]
+material = "glass"
+servo = { stress = 1e5, area = 0.00363609, max_speed = 0.05 }
+
+[output]
+series_every = 100
+
+[[output.series]]
+name = "platen"
+quantity = "wall_stress"
+wall = 1
+
+[[output.series]]
+name = "sample"
+quantity = "stress"
+box = { min = [0, 0, 0], max = [0.0603, 0.0603, 0.0603] }
+"#;
+    let scene = flexdem_scene::parse_scene(text, Path::new("servo.toml")).unwrap();
+    let (mut sim, rest) = flexdem_run::build_simulation(scene).unwrap();
+    assert!(matches!(sim.wall_controls()[1], flexdem_integrate::WallControl::Stress(_)));
+    sim.run(6000).unwrap();
+    let row = flexdem_output::row_values(&rest.output.series, &sim);
+    let (platen, szz) = (row[2], row[5]);
+    eprintln!(
+        "platen {platen:.6e} Pa, Love–Weber σzz {szz:.6e} Pa, p {:.6e} Pa, q {:.6e} Pa, energy \
+         error {:.2e}",
+        row[9],
+        row[10],
+        sim.relative_balance_error()
+    );
+    assert!((platen / 1e5 - 1.0).abs() < 1e-2, "platen stress {platen}");
+    // the box is 60.3 mm high, the columns about 59.9 mm between their wall contacts
+    // (three diameters less the overlaps): σzz reads 0.7 % below the platen
+    assert!((szz / platen - 1.0).abs() < 1e-2, "σzz {szz} vs {platen}");
+    assert!(sim.relative_balance_error().abs() < 1e-3, "{}", sim.relative_balance_error());
+}

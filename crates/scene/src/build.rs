@@ -3,16 +3,15 @@
 //! select what was built.
 
 use crate::builder::Builder;
+use crate::built::SceneNames;
 use crate::error::{unknown_name, Ctx, SceneError};
 use crate::run_length::{check_step_count, RunLength};
 use crate::scene::{Scene, MAX_THREADS};
-use crate::schema::{
-    BoundarySpec, Dt, LoadSpec, MaterialSpec, SceneFile, SimulationSpec, Tolerance, WallSpec, S,
-};
+use crate::schema::{BoundarySpec, Dt, MaterialSpec, SceneFile, SimulationSpec, Tolerance, S};
 use flexdem_contact::{FailureMode, LinkKinematicsMode, Material};
 use flexdem_elements::{Dofs, MaterialId, Model};
-use flexdem_geom::{Real, Vec3};
-use flexdem_integrate::{Load, Ramp, Settings, TimeStep};
+use flexdem_geom::Real;
+use flexdem_integrate::{Settings, TimeStep};
 use flexdem_output::OutputSettings;
 use std::path::Path;
 
@@ -24,8 +23,8 @@ pub(crate) fn build(file: SceneFile, ctx: Ctx<'_>, source: &Path) -> Result<Scen
         dir,
         model: Model::new(),
         materials: Vec::new(),
-        structures: Vec::new(),
-        groups: Vec::new(),
+        names: SceneNames::empty(),
+        wall_controls: Vec::new(),
         available: crate::memory::available_memory(),
     };
     let (settings, run, threads) = b.simulation(&file.simulation)?;
@@ -56,7 +55,7 @@ pub(crate) fn build(file: SceneFile, ctx: Ctx<'_>, source: &Path) -> Result<Scen
     for bc in &file.boundary {
         b.add_boundary(bc)?;
     }
-    let loads = file.loads.iter().map(|l| b.load(l)).collect::<Result<Vec<_>, _>>()?;
+    let loads = file.loads.iter().map(|l| b.selector().load(l)).collect::<Result<Vec<_>, _>>()?;
     let pressures = file.pressures.iter().map(|p| b.pressure(p)).collect::<Result<Vec<_>, _>>()?;
     let output = match &file.output {
         Some(o) => b.output(o)?,
@@ -76,6 +75,8 @@ pub(crate) fn build(file: SceneFile, ctx: Ctx<'_>, source: &Path) -> Result<Scen
         settings,
         loads,
         pressures,
+        names: b.names,
+        wall_controls: b.wall_controls,
         run,
         threads,
         output,
@@ -306,26 +307,6 @@ impl Builder<'_> {
         Ok(())
     }
 
-    fn add_wall(&mut self, spec: &S<WallSpec>) -> Result<(), SceneError> {
-        let ctx = self.ctx;
-        let w = spec.get_ref();
-        let point = ctx.vec3(&w.point, "walls.point", "m")?;
-        let normal = ctx.direction(&w.normal, "walls.normal")?;
-        let material = self.material(&w.material, "walls.material")?;
-        let velocity = w
-            .velocity
-            .as_ref()
-            .map_or(Ok(Vec3::zeros()), |v| ctx.vec3(v, "walls.velocity", "m/s"))?;
-        let mask = ctx.mask(w.mask.as_ref(), "walls.mask")?;
-        let id = self
-            .model
-            .add_wall(point, normal, material)
-            .map_err(|e| ctx.at(spec.span(), "walls", e.to_string()))? as usize;
-        self.model.walls[id].velocity = velocity;
-        self.model.walls[id].mask = mask;
-        Ok(())
-    }
-
     fn add_boundary(&mut self, spec: &S<BoundarySpec>) -> Result<(), SceneError> {
         let ctx = self.ctx;
         let bc = spec.get_ref();
@@ -355,38 +336,5 @@ impl Builder<'_> {
             self.model.impose_angular_velocity(ids.iter().copied(), w).map_err(model_error)?;
         }
         Ok(())
-    }
-
-    fn load(&self, spec: &S<LoadSpec>) -> Result<Load, SceneError> {
-        let ctx = self.ctx;
-        let l = spec.get_ref();
-        let particles = self.select(&l.select, "loads.select")?;
-        let force = match (&l.force, &l.total_force) {
-            (Some(f), None) => ctx.vec3(f, "loads.force", "N on each particle")?,
-            (None, Some(f)) => ctx.vec3(f, "loads.total_force", "N")? / particles.len() as Real,
-            (None, None) => Vec3::zeros(),
-            (Some(_), Some(f)) => {
-                return Err(ctx.at(f.span(), "loads.total_force", "give either `force` (on each particle) or `total_force` (shared equally), not both"))
-            }
-        };
-        let torque = l
-            .moment
-            .as_ref()
-            .map_or(Ok(Vec3::zeros()), |m| ctx.vec3(m, "loads.moment", "N·m on each particle"))?;
-        if l.force.is_none() && l.total_force.is_none() && l.moment.is_none() {
-            return Err(ctx.missing(
-                spec.span(),
-                "loads",
-                "give `force`, `total_force` or `moment`",
-            ));
-        }
-        let ramp = match &l.ramp {
-            None => Ramp::Constant,
-            Some(r) => Ramp::Linear {
-                start: ctx.non_negative(&r.get_ref().start, "loads.ramp.start", "s")?,
-                duration: ctx.positive(&r.get_ref().duration, "loads.ramp.duration", "s")?,
-            },
-        };
-        Ok(Load { particles, force, torque, ramp })
     }
 }

@@ -1,9 +1,10 @@
 //! The state of a scene build, which the sections' readers (`build`, `structures`,
 //! `spheres`, `selection`, `output`) extend with their methods.
 
-use crate::built::{BuiltStructure, SphereGroup};
+use crate::built::SceneNames;
 use crate::error::Ctx;
 use flexdem_elements::{MaterialId, Model};
+use flexdem_integrate::WallControl;
 use std::path::PathBuf;
 
 /// The state of a build: the model so far and the names defined.
@@ -13,8 +14,10 @@ pub(crate) struct Builder<'a> {
     pub dir: PathBuf,
     pub model: Model,
     pub materials: Vec<(String, MaterialId)>,
-    pub structures: Vec<BuiltStructure>,
-    pub groups: Vec<SphereGroup>,
+    /// The structures and sphere groups built so far, for selections.
+    pub names: SceneNames,
+    /// How each wall built so far moves.
+    pub wall_controls: Vec<WallControl>,
     /// The memory available to the simulation (bytes), if known.
     pub available: Option<u64>,
 }

@@ -2,11 +2,13 @@
 
 use crate::builder::Builder;
 use crate::error::{unknown_name, SceneError};
+use crate::output_measures::MEASURES;
 use crate::schema::{OutputSpec, SeriesSpecToml, S};
 use flexdem_elements::{structure_volume, VolumeError};
 use flexdem_output::{OutputSettings, Quantity, SeriesSpec};
 
-/// The series quantities a scene may ask for.
+/// The series quantities of particles, of the whole simulation and of a structure's enclosed
+/// volume (those of walls and samples are [`MEASURES`]).
 const QUANTITIES: [&str; 8] = [
     "position",
     "velocity",
@@ -58,13 +60,15 @@ impl Builder<'_> {
                 ));
             }
             let q = sp.quantity.get_ref().as_str();
-            if !QUANTITIES.contains(&q) {
+            if !QUANTITIES.contains(&q) && !MEASURES.contains(&q) {
+                let known: Vec<&str> = QUANTITIES.iter().chain(&MEASURES).copied().collect();
                 return Err(ctx.at(
                     sp.quantity.span(),
                     "output.series.quantity",
-                    unknown_name("quantity", q, &QUANTITIES),
+                    unknown_name("quantity", q, &known),
                 ));
             }
+            self.check_measure_keys(sp)?;
             if q == "volume" {
                 let quantity = self.volume_quantity(s)?;
                 series.push(SeriesSpec { name: name.clone(), quantity });
@@ -108,6 +112,7 @@ impl Builder<'_> {
                 }
             };
             let quantity = match q {
+                _ if MEASURES.contains(&q) => self.measure(q, s)?,
                 "position" => Quantity::Position(one()?),
                 "velocity" => Quantity::Velocity(one()?),
                 "angular_velocity" => Quantity::AngularVelocity(one()?),

@@ -54,6 +54,20 @@ pub enum PackingError {
         /// Tries made.
         attempts: usize,
     },
+    /// A dense packing still overlaps after its relaxation sweeps.
+    #[error(
+        "the spheres still overlap by {overlap:.2e} of the smallest radius after {iterations} \
+         minimisation iterations at solid fraction {fraction}: ask for a lower solid fraction, a wider \
+         radius range or more iterations"
+    )]
+    Jammed {
+        /// The solid fraction asked for.
+        fraction: Real,
+        /// Largest overlap left, relative to the smallest radius.
+        overlap: Real,
+        /// Iterations done.
+        iterations: usize,
+    },
 }
 
 fn check_box(min: Vec3, max: Vec3) -> Result<(), PackingError> {
@@ -123,7 +137,7 @@ pub fn lattice_packing(
 /// SplitMix64: a small, fast, well-mixed generator, so that packings are reproducible
 /// across platforms and releases.
 #[derive(Clone, Debug)]
-struct SplitMix64(u64);
+pub(crate) struct SplitMix64(pub(crate) u64);
 
 impl SplitMix64 {
     fn next_u64(&mut self) -> u64 {
@@ -135,7 +149,7 @@ impl SplitMix64 {
     }
 
     /// Uniform in [0, 1).
-    fn unit(&mut self) -> Real {
+    pub(crate) fn unit(&mut self) -> Real {
         (self.next_u64() >> 11) as Real / (1u64 << 53) as Real
     }
 }

@@ -81,10 +81,11 @@ impl Builder<'_> {
         name: &S<String>,
         key: &str,
     ) -> Result<&BuiltStructure, SceneError> {
-        match self.structures.iter().find(|s| s.name == *name.get_ref()) {
+        let structures = &self.names.structures;
+        match structures.iter().find(|s| s.name == *name.get_ref()) {
             Some(st) => Ok(st),
             None => {
-                let known: Vec<&str> = self.structures.iter().map(|s| s.name.as_str()).collect();
+                let known: Vec<&str> = structures.iter().map(|s| s.name.as_str()).collect();
                 Err(self.ctx.at(
                     name.span(),
                     key,

@@ -1,8 +1,9 @@
 //! [`Scene`]: what a scene file describes, ready for a simulation.
 
+use crate::built::SceneNames;
 use crate::run_length::RunLength;
 use flexdem_elements::Model;
-use flexdem_integrate::{Load, Pressure, Settings};
+use flexdem_integrate::{Load, Pressure, Settings, WallControl};
 use flexdem_output::OutputSettings;
 use std::path::PathBuf;
 
@@ -21,6 +22,12 @@ pub struct Scene {
     pub loads: Vec<Load>,
     /// Pressures on PFacets, to add with `Simulation::add_pressure`.
     pub pressures: Vec<Pressure>,
+    /// The structures and sphere groups by name, for selections after the build
+    /// ([`crate::parse_loads`]).
+    pub names: SceneNames,
+    /// How each wall moves (one per wall of the model), to set with
+    /// `Simulation::set_wall_control`.
+    pub wall_controls: Vec<WallControl>,
     /// How long to run.
     pub run: RunLength,
     /// Number of worker threads (None: the machine's default).

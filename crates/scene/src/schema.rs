@@ -251,7 +251,7 @@ pub(crate) struct BoxSpec {
     pub max: S<V3>,
 }
 
-/// `[[spheres]]`: one sphere, a lattice or a random packing.
+/// `[[spheres]]`: one sphere, a lattice, a random or dense packing, or spheres from a file.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct SpheresSpec {
@@ -266,6 +266,14 @@ pub(crate) struct SpheresSpec {
     pub spacing: Option<S<f64>>,
     pub count: Option<S<i64>>,
     pub seed: Option<S<i64>>,
+    // dense
+    pub cylinder: Option<S<CylinderSpec>>,
+    pub inside: Option<S<String>>,
+    pub solid_fraction: Option<S<f64>>,
+    pub tolerance: Option<S<f64>>,
+    pub max_iterations: Option<S<i64>>,
+    // file
+    pub file: Option<S<String>>,
     pub velocity: Option<S<V3>>,
     pub angular_velocity: Option<S<V3>>,
     pub mask: Option<S<i64>>,
@@ -279,7 +287,18 @@ pub(crate) struct WallSpec {
     pub normal: S<V3>,
     pub material: S<String>,
     pub velocity: Option<S<V3>>,
+    pub servo: Option<S<ServoSpec>>,
     pub mask: Option<S<i64>>,
+}
+
+/// `servo = { stress, area, gain, max_speed }` of a wall.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct ServoSpec {
+    pub stress: S<f64>,
+    pub area: S<f64>,
+    pub gain: Option<S<f64>>,
+    pub max_speed: S<f64>,
 }
 
 /// A plane `{ point, normal, tolerance }`.
@@ -364,6 +383,24 @@ pub(crate) struct SeriesSpecToml {
     pub name: S<String>,
     pub quantity: S<String>,
     pub of: Option<S<SelectSpec>>,
-    /// `quantity = "volume"`: indices of the `[[walls]]` closing the structure's open ends.
+    // volume: indices of the [[walls]] closing the structure's open ends
     pub walls: Option<S<Vec<i64>>>,
+    // wall_force, wall_stress
+    pub wall: Option<S<i64>>,
+    pub area: Option<S<f64>>,
+    // stress, solid_fraction
+    #[serde(rename = "box")]
+    pub region: Option<S<BoxSpec>>,
+    pub cylinder: Option<S<CylinderSpec>>,
+    pub volume: Option<S<f64>>,
+}
+
+/// A solid cylinder `{ start, axis, radius, length }`, placed as a `tube`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct CylinderSpec {
+    pub start: S<V3>,
+    pub axis: S<V3>,
+    pub radius: S<f64>,
+    pub length: S<f64>,
 }

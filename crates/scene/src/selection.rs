@@ -2,10 +2,23 @@
 //! and filtered by a box or a plane. A selection that matches nothing is an error.
 
 use crate::builder::Builder;
-use crate::built::Layout;
-use crate::error::{unknown_name, SceneError};
+use crate::built::{Layout, SceneNames};
+use crate::error::{unknown_name, Ctx, SceneError};
 use crate::schema::{SelectSpec, S};
 use flexdem_elements::builders::{GridLayout, GridSide};
+use flexdem_elements::Model;
+
+/// Selections over a model with the names of its scene: during the build (the model so
+/// far), or after it (a script's loads between stages, over the simulation's current model).
+#[derive(Clone, Copy)]
+pub(crate) struct Selector<'a> {
+    /// The text being read, for located errors.
+    pub ctx: Ctx<'a>,
+    /// The particles selected from (positions for `box` and `plane`).
+    pub model: &'a Model,
+    /// The structures and sphere groups by name.
+    pub names: &'a SceneNames,
+}
 
 /// The sides a layout offers.
 fn sides(layout: Layout) -> &'static [&'static str] {
@@ -18,6 +31,29 @@ fn sides(layout: Layout) -> &'static [&'static str] {
 }
 
 impl Builder<'_> {
+    /// Selections over the model built so far.
+    pub(crate) fn selector(&self) -> Selector<'_> {
+        Selector { ctx: self.ctx, model: &self.model, names: &self.names }
+    }
+
+    /// The particle ids chosen by `sel` among the particles built so far
+    /// ([`Selector::select`]).
+    pub(crate) fn select(&self, sel: &S<SelectSpec>, key: &str) -> Result<Vec<u32>, SceneError> {
+        self.selector().select(sel, key)
+    }
+}
+
+impl Selector<'_> {
+    /// The error for a selection by name when the names are not known.
+    fn names_unknown(&self, span: std::ops::Range<usize>, key: &str) -> SceneError {
+        self.ctx.at(
+            span,
+            key,
+            "the scene's structure and sphere group names are not known here (a simulation \
+             resumed from a checkpoint does not keep them): select by `ids`, `box` or `plane`",
+        )
+    }
+
     /// The particle ids (ascending, no duplicates) chosen by `sel`; `key` is the dotted path of
     /// the `select` key for messages (e.g. `boundary.select`).
     pub(crate) fn select(&self, sel: &S<SelectSpec>, key: &str) -> Result<Vec<u32>, SceneError> {
@@ -41,10 +77,16 @@ impl Builder<'_> {
             return Err(ctx.at(side.span(), &k("side"), "`side` needs `structure = \"name\"`"));
         }
         let mut ids: Vec<u32> = if let Some(name) = &spec.structure {
+            if !self.names.known {
+                return Err(self.names_unknown(name.span(), &k("structure")));
+            }
             self.structure_selection(name, spec.side.as_ref(), key)?
         } else if let Some(name) = &spec.spheres {
-            let Some(g) = self.groups.iter().find(|g| g.name == *name.get_ref()) else {
-                let known: Vec<&str> = self.groups.iter().map(|g| g.name.as_str()).collect();
+            if !self.names.known {
+                return Err(self.names_unknown(name.span(), &k("spheres")));
+            }
+            let Some(g) = self.names.groups.iter().find(|g| g.name == *name.get_ref()) else {
+                let known: Vec<&str> = self.names.groups.iter().map(|g| g.name.as_str()).collect();
                 return Err(ctx.at(
                     name.span(),
                     &k("spheres"),
@@ -133,8 +175,8 @@ impl Builder<'_> {
         key: &str,
     ) -> Result<Vec<u32>, SceneError> {
         let ctx = self.ctx;
-        let Some(st) = self.structures.iter().find(|s| s.name == *name.get_ref()) else {
-            let known: Vec<&str> = self.structures.iter().map(|s| s.name.as_str()).collect();
+        let Some(st) = self.names.structures.iter().find(|s| s.name == *name.get_ref()) else {
+            let known: Vec<&str> = self.names.structures.iter().map(|s| s.name.as_str()).collect();
             return Err(ctx.at(
                 name.span(),
                 &format!("{key}.structure"),

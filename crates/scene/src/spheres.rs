@@ -10,10 +10,26 @@ use flexdem_geom::{Real, Vec3};
 use std::ops::Range;
 
 /// The kinds of `[[spheres]]` entry and the keys each takes besides the common ones.
-const KINDS: [(&str, &[&str]); 3] = [
+const KINDS: [(&str, &[&str]); 5] = [
     ("single", &["center", "radius"]),
     ("lattice", &["box", "radius", "spacing"]),
     ("random", &["box", "radius", "radius_range", "count", "seed"]),
+    (
+        "dense",
+        &[
+            "box",
+            "cylinder",
+            "inside",
+            "radius",
+            "radius_range",
+            "count",
+            "seed",
+            "solid_fraction",
+            "tolerance",
+            "max_iterations",
+        ],
+    ),
+    ("file", &["file"]),
 ];
 
 impl SpheresSpec {
@@ -29,6 +45,12 @@ impl SpheresSpec {
             ("radius_range", sp(&self.radius_range)),
             ("count", sp(&self.count)),
             ("seed", sp(&self.seed)),
+            ("cylinder", sp(&self.cylinder)),
+            ("inside", sp(&self.inside)),
+            ("solid_fraction", sp(&self.solid_fraction)),
+            ("tolerance", sp(&self.tolerance)),
+            ("max_iterations", sp(&self.max_iterations)),
+            ("file", sp(&self.file)),
         ]
         .into_iter()
         .filter_map(|(k, s)| s.map(|s| (k, s)))
@@ -62,7 +84,7 @@ impl Builder<'_> {
         }
         let name = sp.name.as_ref().map(|n| (n.get_ref().clone(), n.span()));
         if let Some((n, span)) = &name {
-            if self.groups.iter().any(|g| g.name == *n) {
+            if self.names.groups.iter().any(|g| g.name == *n) {
                 return Err(ctx.at(
                     span.clone(),
                     &key("name"),
@@ -116,32 +138,11 @@ impl Builder<'_> {
                     .map(|c| (c, r))
                     .collect()
             }
+            "dense" => self.dense_spheres(sp, table.clone())?,
+            "file" => self.file_spheres(sp, table.clone())?,
             _ => {
                 let (lo, hi) = region()?;
-                let (r_min, r_max) = match (&sp.radius, &sp.radius_range) {
-                    (Some(_), None) => (radius()?, radius()?),
-                    (None, Some(rr)) => {
-                        let [a, b] = rr.get_ref().0;
-                        let a = ctx.positive(&S::new(rr.span(), a), &key("radius_range"), "m")?;
-                        let b = ctx.positive(&S::new(rr.span(), b), &key("radius_range"), "m")?;
-                        if b < a {
-                            return Err(ctx.at(
-                                rr.span(),
-                                &key("radius_range"),
-                                format!("is [{a}, {b}]: expected [smallest, largest]"),
-                            ));
-                        }
-                        (a, b)
-                    }
-                    (Some(r), Some(_)) => {
-                        return Err(ctx.at(
-                            r.span(),
-                            &key("radius"),
-                            "give either `radius` or `radius_range`, not both",
-                        ))
-                    }
-                    (None, None) => return Err(need("radius")),
-                };
+                let (r_min, r_max) = self.radius_range(sp, table.clone())?;
                 let count =
                     ctx.count(sp.count.as_ref().ok_or_else(|| need("count"))?, &key("count"), 1)?;
                 let seed = match &sp.seed {
@@ -164,8 +165,49 @@ impl Builder<'_> {
         }
         let end = self.model.particles.len() as u32;
         if let Some((name, _)) = name {
-            self.groups.push(SphereGroup { name, particles: first..end });
+            self.names.groups.push(SphereGroup { name, particles: first..end });
         }
         Ok(())
+    }
+
+    /// `radius` (one size) or `radius_range = [smallest, largest]`, exactly one of them.
+    pub(crate) fn radius_range(
+        &self,
+        sp: &SpheresSpec,
+        table: Range<usize>,
+    ) -> Result<(Real, Real), SceneError> {
+        let ctx = self.ctx;
+        let key = |k: &str| format!("spheres.{k}");
+        let kind = sp.kind.get_ref().as_str();
+        let need = |k: &str| {
+            ctx.missing(table.clone(), &key(k), &format!("kind = \"{kind}\" needs `{k}`"))
+        };
+        let radius = || -> Result<Real, SceneError> {
+            ctx.positive(sp.radius.as_ref().ok_or_else(|| need("radius"))?, &key("radius"), "m")
+        };
+        Ok(match (&sp.radius, &sp.radius_range) {
+            (Some(_), None) => (radius()?, radius()?),
+            (None, Some(rr)) => {
+                let [a, b] = rr.get_ref().0;
+                let a = ctx.positive(&S::new(rr.span(), a), &key("radius_range"), "m")?;
+                let b = ctx.positive(&S::new(rr.span(), b), &key("radius_range"), "m")?;
+                if b < a {
+                    return Err(ctx.at(
+                        rr.span(),
+                        &key("radius_range"),
+                        format!("is [{a}, {b}]: expected [smallest, largest]"),
+                    ));
+                }
+                (a, b)
+            }
+            (Some(r), Some(_)) => {
+                return Err(ctx.at(
+                    r.span(),
+                    &key("radius"),
+                    "give either `radius` or `radius_range`, not both",
+                ))
+            }
+            (None, None) => return Err(need("radius")),
+        })
     }
 }

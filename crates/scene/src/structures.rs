@@ -136,7 +136,7 @@ impl Builder<'_> {
         let st = spec.get_ref();
         let ctx = self.ctx;
         let name = st.name.get_ref().clone();
-        if self.structures.iter().any(|s| s.name == name) {
+        if self.names.structures.iter().any(|s| s.name == name) {
             return Err(ctx.at(
                 st.name.span(),
                 "structures.name",
@@ -206,7 +206,7 @@ impl Builder<'_> {
                 ),
             ));
         }
-        self.structures.push(BuiltStructure { name, id, layout });
+        self.names.structures.push(BuiltStructure { name, id, layout });
         Ok(())
     }
 

@@ -249,3 +249,93 @@ fn a_mesh_structure_is_read_relative_to_the_scene_file() {
     assert_eq!(s.model.structures[0].nodes.len(), 8);
     assert_eq!(s.output.directory, dir.path().join("output"));
 }
+
+/// A servo wall and the series of walls and samples: the controls come one per wall in file
+/// order, a wall stress takes its servo's area unless given one, regions are read as written.
+#[test]
+fn servo_walls_and_sample_measures_are_read() {
+    use flexdem_integrate::{Region, StressControl, WallControl};
+    use flexdem_output::Quantity;
+    let s = scene(
+        r#"
+[[walls]]
+point = [0, 0, 0]
+normal = [0, 0, 1]
+material = "m"
+velocity = [0, 0, 0.01]
+
+[[walls]]
+point = [0, 0, 0.2]
+normal = [0, 0, -1]
+material = "m"
+servo = { stress = 1e5, area = 0.01, max_speed = 0.05 }
+
+[[walls]]
+point = [0.1, 0, 0]
+normal = [-1, 0, 0]
+material = "m"
+servo = { stress = 5e4, area = 0.02, gain = 1e-6, max_speed = 0.1 }
+
+[output]
+series_every = 10
+
+[[output.series]]
+name = "top_force"
+quantity = "wall_force"
+wall = 1
+
+[[output.series]]
+name = "top"
+quantity = "wall_stress"
+wall = 1
+
+[[output.series]]
+name = "bottom"
+quantity = "wall_stress"
+wall = 0
+area = 0.04
+
+[[output.series]]
+name = "sample"
+quantity = "stress"
+cylinder = { start = [0, 0, 0], axis = [0, 0, 2], radius = 0.05, length = 0.2 }
+
+[[output.series]]
+name = "inner"
+quantity = "stress"
+box = { min = [-0.05, -0.05, 0], max = [0.05, 0.05, 0.2] }
+volume = 0.003
+
+[[output.series]]
+name = "phi"
+quantity = "solid_fraction"
+box = { min = [-0.05, -0.05, 0], max = [0.05, 0.05, 0.2] }
+"#,
+    );
+    let top = StressControl { target: 1e5, area: 0.01, gain: None, max_speed: 0.05 };
+    let side = StressControl { target: 5e4, area: 0.02, gain: Some(1e-6), max_speed: 0.1 };
+    assert_eq!(
+        s.wall_controls,
+        vec![WallControl::Velocity, WallControl::Stress(top), WallControl::Stress(side)]
+    );
+    assert_eq!(s.model.walls[0].velocity, Vec3::new(0.0, 0.0, 0.01));
+    let q: Vec<&Quantity> = s.output.series.iter().map(|x| &x.quantity).collect();
+    let cylinder = Region::Cylinder {
+        start: Vec3::zeros(),
+        axis: Vec3::new(0.0, 0.0, 2.0),
+        radius: 0.05,
+        length: 0.2,
+    };
+    let block = Region::Box { min: Vec3::new(-0.05, -0.05, 0.0), max: Vec3::new(0.05, 0.05, 0.2) };
+    assert_eq!(
+        q,
+        [
+            &Quantity::WallForce(1),
+            &Quantity::WallStress { wall: 1, area: 0.01 },
+            &Quantity::WallStress { wall: 0, area: 0.04 },
+            &Quantity::Stress { region: cylinder, volume: None },
+            &Quantity::Stress { region: block, volume: Some(0.003) },
+            &Quantity::SolidFraction(block),
+        ]
+    );
+}

@@ -7,4 +7,5 @@ pub mod execute;
 pub mod info;
 pub mod resume;
 pub mod run;
+pub mod spheres;
 pub mod validate;

@@ -28,6 +28,8 @@ end = [1, 0, 0]
 segments = 4
 '''
 BASE = SIM + MAT + CHAIN
+WALL = '\n[[walls]]\npoint = [0, 0, 0]\nnormal = [0, 0, 1]\nmaterial = "steel"\n'
+SERIES = '\n[output]\nseries_every = 10\n\n[[output.series]]\nname = "s"\n'
 
 CASES = {
     "toml_syntax": ('[simulation]\nsteps = 10 20  # <- error\n', ["`simulation.steps`"]),
@@ -80,6 +82,17 @@ CASES = {
     "steps_too_many": ('[simulation]\nsteps = 9223372036854775807  # <- error\n', ["`simulation.steps`", "expected at most 1000000000000"]),
     "shell_too_many_nodes": (SIM + MAT + '\n[[structures]]  # <- error\nname = "ball"\nkind = "sphere_shell"\nmaterial = "steel"\nnode_radius = 0.0001\nradius = 1.0\nsubdivisions = 9\n', ["`structures`", "2621442 nodes", "more than the 2000000 allowed"]),
     "helix_pitch_zero": (SIM + MAT + '\n[[structures]]  # <- error\nname = "spring"\nkind = "helix"\nmaterial = "steel"\nnode_radius = 0.01\nradius = 0.1\npitch = 0\nturns = 2\n', ["`structures`", "structure `spring` overlaps itself at the start", "connection"]),
+    # issue 15: walls that hold a stress, and the measures of walls and samples
+    "wall_servo_and_velocity": (SIM + MAT + WALL + 'velocity = [0, 0, 1]\nservo = { stress = 1e5, area = 0.01, max_speed = 0.1 }  # <- error\n', ["`walls.servo`", "conflicts with `velocity`"]),
+    "wall_servo_negative_stress": (SIM + MAT + WALL + 'servo = { stress = -1e5, area = 0.01, max_speed = 0.1 }  # <- error\n', ["`walls.servo.stress`", "is -100000", "expected a finite number >= 0"]),
+    "wall_servo_zero_speed": (SIM + MAT + WALL + 'servo = { stress = 1e5, area = 0.01, max_speed = 0 }  # <- error\n', ["`walls.servo.max_speed`", "is 0", "expected a finite number > 0 (m/s)"]),
+    "wall_servo_missing_max_speed": (SIM + MAT + WALL + 'servo = { stress = 1e5, area = 0.01 }  # <- error\n', ["`walls.servo`", "missing field `max_speed`"]),
+    "wall_servo_unknown_key": (SIM + MAT + WALL + 'servo = { stress = 1e5, area = 0.01, max_speed = 0.1, gian = 1e-6 }  # <- error\n', ["unknown field `gian`", "did you mean `gain`?"]),
+    "series_wall_out_of_range": (BASE + WALL + SERIES + 'quantity = "wall_force"\nwall = 3  # <- error\n', ["`output.series.wall`", "is 3", "from 0 to 0 (in file order)"]),
+    "series_wall_stress_needs_area": (BASE + WALL + SERIES.replace('[[output.series]]', '[[output.series]]  # <- error') + 'quantity = "wall_stress"\nwall = 0\n', ["`output.series.area`", "wall 0 has no servo", "give `area`"]),
+    "series_stress_needs_region": (BASE + SERIES.replace('[[output.series]]', '[[output.series]]  # <- error') + 'quantity = "stress"\n', ["`output.series.box`", "needs a region", "cylinder"]),
+    "series_key_of_other_quantity": (BASE + SERIES + 'quantity = "energy"\nwall = 0  # <- error\n', ["`output.series.wall`", "quantity = \"energy\" does not take `wall`", "wall_force and wall_stress"]),
+    "series_flat_box": (BASE + SERIES + 'quantity = "solid_fraction"\nbox = { min = [0, 0, 0], max = [1, 0, 1] }  # <- error\n', ["`output.series.box`", "not below max", "no volume"]),
     "chain_thicker_than_its_segments": (SIM + MAT + CHAIN.replace('[[structures]]', '[[structures]]  # <- error').replace('segments = 4', 'segments = 1000000'), ["`structures`", "structure `cable` overlaps itself at the start", "connection 0 (nodes 0–1)", "connection 2 (nodes 2–3)"]),
 }
 

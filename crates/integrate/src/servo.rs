@@ -1,0 +1,247 @@
+//! Walls that hold a stress (model.md §5): the force the bodies put on each wall, and the
+//! servo that sets the normal velocity of a stress-controlled wall from it each step (YADE's
+//! `TriaxialStressController`, PFC's servo-controlled walls).
+//!
+//! Signs: a wall's normal `n` points to the side where the bodies live. `F` is the force the
+//! bodies put on the wall, `−Σ F_wall→body` over its contacts; in compression it points
+//! against `n`, so the normal force `F_n = −F·n` is ≥ 0. The servo moves the wall along `n`
+//! (into the bodies) when `F_n` is below the target and away from them when it is above:
+//!
+//! `v·n = clamp(G·(σ_target·A − F_n), −v_max, v_max)`
+//!
+//! with the gain `G` (m/s per N) given, or by default `G = α/(K·dt)`: `K = Σ kn` over the
+//! wall's contacts that carry a force, `dt` the step, `α` = [`SERVO_RELAXATION`]. With it the
+//! wall moves in one step by `α·(F_target − F_n)/K`, the displacement that would close the
+//! fraction `α` of the force error if the bodies behind the contacts did not move: a first
+//! order loop `e ← (1 − α)·e`, stable for `0 < α < 2` and without overshoot for `α ≤ 1`. The
+//! bodies behind the contacts yield, so the wall sees a softer spring than `K` and the loop
+//! converges more slowly, never faster. A fixed gain much above `1/(K·dt)` makes the wall
+//! overshoot by more than the error each step: it rattles or blows up; a small one makes the
+//! wall slow to reach its target (the time constant is about `1/(G·K_sample)`, `K_sample`
+//! the stiffness of the whole sample between the walls). Without any loaded contact (`K = 0`),
+//! the automatic gain moves the wall at `v_max` towards its target: `v_max` is also the speed
+//! of approach, choose it so that the wall moves by a small fraction of the particles' radius
+//! per step.
+
+use crate::contacts::Contact;
+use crate::SimulationError;
+use flexdem_elements::virtual_sphere::Feature;
+use flexdem_elements::Wall;
+use flexdem_geom::{Real, Vec3};
+use serde::{Deserialize, Serialize};
+
+/// The relaxation factor `α` of the automatic gain `G = α/(K·dt)`: the fraction of the force
+/// error a stress-controlled wall closes in one step (see the module documentation).
+pub const SERVO_RELAXATION: Real = 0.5;
+
+/// How a wall moves.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub enum WallControl {
+    /// With the velocity it has ([`Wall::velocity`], from the scene or
+    /// `Simulation::set_wall_velocity`): strain control.
+    #[default]
+    Velocity,
+    /// With the normal velocity a servo sets each step to hold a normal stress; the
+    /// tangential part of the wall's velocity is kept.
+    Stress(StressControl),
+}
+
+/// A servo holding the normal stress on a wall (see the module documentation for the law).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct StressControl {
+    /// Target normal stress (Pa, compression positive, ≥ 0).
+    pub target: Real,
+    /// Area the stress is taken over (m², > 0): the target force is `target·area`.
+    pub area: Real,
+    /// Gain (m/s per N, > 0); `None`: the automatic gain `α/(K·dt)`.
+    pub gain: Option<Real>,
+    /// Largest normal speed of the wall (m/s, > 0).
+    pub max_speed: Real,
+}
+
+impl StressControl {
+    /// The normal force the servo aims at, `target·area` (N).
+    pub fn target_force(&self) -> Real {
+        self.target * self.area
+    }
+
+    /// Checks every value, naming the bad one: a finite target ≥ 0, a finite area, gain and
+    /// largest speed > 0.
+    pub fn validate(&self) -> Result<(), SimulationError> {
+        let bad = |what: &str, value: Real, expected: &str| {
+            Err(SimulationError::Setting {
+                what: what.into(),
+                value: value.to_string(),
+                expected: expected.into(),
+            })
+        };
+        if !(self.target >= 0.0 && self.target.is_finite()) {
+            return bad("servo target stress", self.target, "a finite stress >= 0 (Pa)");
+        }
+        if !(self.area > 0.0 && self.area.is_finite()) {
+            return bad("servo area", self.area, "a finite area > 0 (m²)");
+        }
+        if let Some(g) = self.gain {
+            if !(g > 0.0 && g.is_finite()) {
+                return bad("servo gain", g, "a finite gain > 0 (m/s per N), or none (automatic)");
+            }
+        }
+        if !(self.max_speed > 0.0 && self.max_speed.is_finite()) {
+            return bad("servo max_speed", self.max_speed, "a finite speed > 0 (m/s)");
+        }
+        Ok(())
+    }
+
+    /// The wall's speed along its normal for the next step, `clamp(G·(F_target − F_n),
+    /// −v_max, v_max)`, from the normal force `normal_force` (N) it receives, the stiffness
+    /// `stiffness` (N/m) of its loaded contacts and the step `dt` (for the automatic gain).
+    pub fn normal_speed(&self, normal_force: Real, stiffness: Real, dt: Real) -> Real {
+        let error = self.target_force() - normal_force;
+        let speed = match self.gain {
+            Some(g) => g * error,
+            None if stiffness > 0.0 && dt > 0.0 => SERVO_RELAXATION * error / (stiffness * dt),
+            // no loaded contact: the automatic gain is infinite
+            None if error == 0.0 => 0.0,
+            None => self.max_speed.copysign(error),
+        };
+        speed.clamp(-self.max_speed, self.max_speed)
+    }
+}
+
+/// Checks the controls against `walls` walls: one per wall, each valid.
+pub(crate) fn check_controls(
+    controls: &[WallControl],
+    walls: usize,
+) -> Result<(), SimulationError> {
+    if controls.len() != walls {
+        return Err(SimulationError::Setting {
+            what: "wall controls".into(),
+            value: format!("{} controls", controls.len()),
+            expected: format!("one per wall ({walls})"),
+        });
+    }
+    controls.iter().try_for_each(|c| match c {
+        WallControl::Velocity => Ok(()),
+        WallControl::Stress(s) => s.validate(),
+    })
+}
+
+/// What the bodies put on each wall at the last step.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub(crate) struct WallLoads {
+    /// Force on each wall (N): `−Σ F_wall→body` over its contacts.
+    pub(crate) force: Vec<Vec3>,
+    /// Stiffness of each wall's contacts that carry a force, `Σ kn` (N/m).
+    pub(crate) stiffness: Vec<Real>,
+}
+
+impl WallLoads {
+    /// Sums the force and the stiffness of the contacts on each of `walls` walls.
+    pub(crate) fn sum(&mut self, contacts: &[Contact], walls: usize) {
+        self.force.clear();
+        self.force.resize(walls, Vec3::zeros());
+        self.stiffness.clear();
+        self.stiffness.resize(walls, 0.0);
+        for c in contacts {
+            let Feature::Wall(w) = c.site1.feature else { continue };
+            let w = w as usize;
+            self.force[w] -= c.forces.force_on_2;
+            if c.forces.normal_force > 0.0 {
+                self.stiffness[w] += c.params.kn;
+            }
+        }
+    }
+}
+
+/// The normal force `F_n = −F·n` (N, ≥ 0 in compression) of the force `force` on `wall`.
+pub fn normal_force(wall: &Wall, force: &Vec3) -> Real {
+    -force.dot(&wall.normal)
+}
+
+/// Sets the normal velocity of every stress-controlled wall for the next step of `dt` from
+/// the loads on it (the tangential part of its velocity is kept). Returns whether a wall is
+/// stress-controlled.
+pub(crate) fn steer_walls(
+    walls: &mut [Wall],
+    controls: &[WallControl],
+    loads: &WallLoads,
+    dt: Real,
+) -> bool {
+    let mut steered = false;
+    for (w, (wall, control)) in walls.iter_mut().zip(controls).enumerate() {
+        let WallControl::Stress(servo) = control else { continue };
+        let f_n = normal_force(wall, &loads.force[w]);
+        let speed = servo.normal_speed(f_n, loads.stiffness[w], dt);
+        let n = wall.normal;
+        wall.velocity += n * (speed - wall.velocity.dot(&n));
+        steered = true;
+    }
+    steered
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn servo(gain: Option<Real>) -> StressControl {
+        StressControl { target: 1e5, area: 0.01, gain, max_speed: 0.1 }
+    }
+
+    #[test]
+    fn the_wall_moves_towards_its_target_at_most_at_its_largest_speed() {
+        let s = servo(Some(1e-5));
+        // 1 kN wanted, 400 N felt: into the bodies at G·600 N
+        assert!((s.normal_speed(400.0, 0.0, 1e-6) - 6e-3).abs() < 1e-15);
+        assert!((s.normal_speed(1600.0, 0.0, 1e-6) + 6e-3).abs() < 1e-15);
+        assert_eq!(s.normal_speed(1e9, 0.0, 1e-6), -0.1);
+        // automatic gain: α·error/(K·dt)
+        let a = servo(None);
+        let v = a.normal_speed(900.0, 1e9, 1e-6);
+        assert!((v - SERVO_RELAXATION * 100.0 / (1e9 * 1e-6)).abs() < 1e-15, "{v}");
+        assert!(v > 0.0 && v < a.max_speed);
+        assert_eq!(a.normal_speed(0.0, 0.0, 1e-6), 0.1);
+        assert_eq!(a.normal_speed(2000.0, 0.0, 1e-6), -0.1);
+        let zero = StressControl { target: 0.0, ..a };
+        assert_eq!(zero.normal_speed(0.0, 0.0, 1e-6), 0.0);
+    }
+
+    #[test]
+    fn bad_servo_values_are_refused_by_name() {
+        let ok = servo(None);
+        assert!(ok.validate().is_ok());
+        let cases = [
+            (StressControl { target: -1.0, ..ok }, "target"),
+            (StressControl { target: Real::NAN, ..ok }, "target"),
+            (StressControl { area: 0.0, ..ok }, "area"),
+            (StressControl { area: Real::INFINITY, ..ok }, "area"),
+            (StressControl { gain: Some(0.0), ..ok }, "gain"),
+            (StressControl { gain: Some(Real::NAN), ..ok }, "gain"),
+            (StressControl { max_speed: -1.0, ..ok }, "max_speed"),
+            (StressControl { max_speed: 0.0, ..ok }, "max_speed"),
+        ];
+        for (s, word) in cases {
+            let e = s.validate().unwrap_err().to_string();
+            assert!(e.contains(word), "{e}");
+        }
+        let two = [WallControl::Velocity, WallControl::Stress(ok)];
+        assert!(check_controls(&two, 2).is_ok());
+        assert!(check_controls(&two, 3).is_err());
+    }
+
+    #[test]
+    fn steering_keeps_the_tangential_velocity() {
+        let mut walls = [Wall {
+            point: Vec3::zeros(),
+            normal: Vec3::new(0.0, 0.0, -1.0),
+            velocity: Vec3::new(0.2, 0.0, 5.0),
+            material: 0,
+            mask: 1,
+        }];
+        let loads = WallLoads { force: vec![Vec3::new(0.0, 0.0, 400.0)], stiffness: vec![0.0] };
+        let controls = [WallControl::Stress(servo(Some(1e-5)))];
+        assert!(steer_walls(&mut walls, &controls, &loads, 1e-6));
+        // F_n = 400 N < 1 kN: down into the bodies (along n = −z) at 6 mm/s
+        assert!((walls[0].velocity - Vec3::new(0.2, 0.0, -6e-3)).norm() < 1e-15);
+        assert!(!steer_walls(&mut walls, &[WallControl::Velocity], &loads, 1e-6));
+    }
+}
