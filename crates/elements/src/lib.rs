@@ -24,6 +24,7 @@ mod selection;
 pub mod self_overlap;
 pub mod touching;
 pub mod virtual_sphere;
+mod volume;
 
 pub use adjacency::*;
 pub use builders::StructureOptions;
@@ -34,3 +35,4 @@ pub use ids::*;
 pub use mass::*;
 pub use model::*;
 pub use particles::*;
+pub use volume::*;

@@ -19,6 +19,7 @@ mod segment_triangle;
 mod triangle_triangle;
 mod trimesh;
 mod types;
+mod volume;
 
 #[cfg(any(test, feature = "proptest-support"))]
 pub mod proptest_support;
@@ -32,3 +33,4 @@ pub use segment_triangle::*;
 pub use triangle_triangle::*;
 pub use trimesh::*;
 pub use types::{Real, Vec3};
+pub use volume::*;

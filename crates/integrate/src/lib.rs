@@ -1,6 +1,7 @@
 //! The flexdem engine: collision detection, contact bookkeeping, parallel force assembly,
 //! leapfrog integration with Cundall damping, the critical time step (model.md §4–6), walls
-//! that hold a stress and the measures of a sample (stress, solid fraction; model.md §5).
+//! that hold a stress and the measures of a sample (stress, solid fraction; model.md §5),
+//! pressure on PFacets (model.md §6).
 
 mod broad_phase;
 mod collider;
@@ -13,6 +14,7 @@ mod links;
 mod measures;
 mod pipeline;
 mod prefilter;
+mod pressure;
 mod region;
 mod servo;
 mod settings;
@@ -33,6 +35,7 @@ pub use measures::{
     deviator_stress, love_weber_stress, mean_stress, solid_fraction, wall_normal_stress,
 };
 pub use pipeline::ForceHook;
+pub use pressure::{add_pressure_forces, pressure_node_force, Pressure};
 pub use region::Region;
 pub use servo::{normal_force, StressControl, WallControl, SERVO_RELAXATION};
 pub use settings::{Load, Ramp, Settings, TimeStep, DEFAULT_ENERGY_TOLERANCE};

@@ -8,9 +8,10 @@ use crate::energy::{Energy, EnergyWatch};
 use crate::integrator::kinetic_energy;
 use crate::links::Links;
 use crate::pipeline::{ForceHook, Pipeline};
+use crate::pressure::{check_pressure, Pressure};
 use crate::servo::WallControl;
 use crate::settings::{Load, Settings};
-use crate::state::{check_load, State};
+use crate::state::{check_load, check_pressures, State};
 use crate::timers::Timers;
 use crate::SimulationError;
 use flexdem_elements::{Connection, Dofs, Model, PFacet, ParticleId};
@@ -33,7 +34,8 @@ pub enum Control {
 /// caches right: [`Simulation::edit_model`] and [`Simulation::set_settings`] re-validate and
 /// rebuild what depends on what they change; the cheap setters ([`Simulation::set_velocity`],
 /// [`Simulation::set_wall_velocity`], [`Simulation::set_wall_control`],
-/// [`Simulation::add_load`], ...) change what no cache depends on.
+/// [`Simulation::add_load`], [`Simulation::add_pressure`], ...) change what no cache depends
+/// on.
 pub struct Simulation {
     pub(crate) state: State,
     pub(crate) pipeline: Pipeline,
@@ -125,6 +127,26 @@ impl Simulation {
         let n = self.state.model.particles.len();
         loads.iter().try_for_each(|l| check_load(l, n))?;
         self.state.loads = loads;
+        Ok(())
+    }
+
+    /// Pressures on PFacets.
+    pub fn pressures(&self) -> &[Pressure] {
+        &self.state.pressures
+    }
+
+    /// Adds a pressure on PFacets, checking its PFacet ids and values. Its work goes to the
+    /// load work of the energy balance.
+    pub fn add_pressure(&mut self, pressure: Pressure) -> Result<(), SimulationError> {
+        check_pressure(&pressure, self.state.model.pfacets.len())?;
+        self.state.pressures.push(pressure);
+        Ok(())
+    }
+
+    /// Replaces every pressure, checking each (nothing changes on error).
+    pub fn set_pressures(&mut self, pressures: Vec<Pressure>) -> Result<(), SimulationError> {
+        check_pressures(&pressures, &self.state.model)?;
+        self.state.pressures = pressures;
         Ok(())
     }
 
@@ -345,15 +367,17 @@ impl Simulation {
     /// wall controls are kept by wall index; walls added get [`WallControl::Velocity`], the
     /// controls of walls removed from the end go. A model that fails the checks is
     /// put back as it was; an error of the time step estimate (no stiffness anywhere) comes
-    /// after the change. Costs a copy of the model: for velocities, positions and walls use
-    /// the setters.
+    /// after the change. A model whose PFacets no longer fit the pressures is put back too.
+    /// Costs a copy of the model: for velocities, positions and walls use the setters.
     pub fn edit_model<R>(
         &mut self,
         edit: impl FnOnce(&mut Model) -> R,
     ) -> Result<R, SimulationError> {
         let before = self.state.model.clone();
         let result = edit(&mut self.state.model);
-        if let Err(e) = State::check_parts(&self.state.model, &self.state.settings) {
+        let checked = State::check_parts(&self.state.model, &self.state.settings)
+            .and_then(|()| check_pressures(&self.state.pressures, &self.state.model));
+        if let Err(e) = checked {
             self.state.model = before;
             return Err(e);
         }

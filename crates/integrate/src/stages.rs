@@ -7,6 +7,7 @@ use crate::culprit::describe;
 use crate::energy::PendingWork;
 use crate::integrator::{leapfrog_step, StepWork};
 use crate::links::LinkUpdate;
+use crate::pressure::add_pressure_forces;
 use crate::servo::steer_walls;
 use crate::settings::TimeStep;
 use crate::simulation::Simulation;
@@ -165,10 +166,11 @@ impl Simulation {
         sums
     }
 
-    /// Imposed loads and the user's hook, kept apart in `external_force` and
-    /// `external_torque` for their work, and added to the totals (nothing to sum over every
-    /// particle without them). Returns the half of their work over the step before (`previous`
-    /// long), with the velocities of t − dt₀/2 (see `StepWork::boundary` for the halves).
+    /// Imposed loads, pressures on PFacets (`pressure.rs`) and the user's hook, kept apart in
+    /// `external_force` and `external_torque` for their work (the load work), and added to
+    /// the totals (nothing to sum over every particle without them). Returns the half of
+    /// their work over the step before (`previous` long), with the velocities of t − dt₀/2
+    /// (see `StepWork::boundary` for the halves).
     fn external_load_stage(&mut self, previous: Real) -> Real {
         if !self.is_loaded() {
             return 0.0;
@@ -182,6 +184,10 @@ impl Simulation {
                 self.pipeline.external_force[i as usize] += load.force * s;
                 self.pipeline.external_torque[i as usize] += load.torque * s;
             }
+        }
+        for pressure in &self.state.pressures {
+            let (model, t) = (&self.state.model, self.state.clock.time);
+            add_pressure_forces(pressure, model, t, &mut self.pipeline.external_force);
         }
         if let Some(hook) = self.pipeline.force_hook.as_mut() {
             hook(
@@ -202,9 +208,11 @@ impl Simulation {
         work
     }
 
-    /// Whether loads or a force hook act.
+    /// Whether loads, pressures or a force hook act.
     fn is_loaded(&self) -> bool {
-        !self.state.loads.is_empty() || self.pipeline.force_hook.is_some()
+        !self.state.loads.is_empty()
+            || !self.state.pressures.is_empty()
+            || self.pipeline.force_hook.is_some()
     }
 
     /// Walls: the force and the contact stiffness of the bodies on each wall at t (kept for
@@ -360,9 +368,9 @@ impl Simulation {
         self.state.energy.watch.scale = self.state.energy.watch.scale.max(e.scale());
     }
 
-    /// Power of the imposed loads and the hook, `Σ (F·v + τ·ω)` with the current velocities,
-    /// on every DOF (on a blocked one the support's reaction, counted in the boundary work,
-    /// takes the rest of the node's force).
+    /// Power of the imposed loads, the pressures and the hook, `Σ (F·v + τ·ω)` with the
+    /// current velocities, on every DOF (on a blocked one the support's reaction, counted in
+    /// the boundary work, takes the rest of the node's force).
     fn external_power(&self) -> Real {
         let p = &self.state.model.particles;
         let forces: Real =

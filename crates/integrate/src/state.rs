@@ -6,6 +6,7 @@
 use crate::contacts::{Contact, Contacts};
 use crate::energy::EnergyAccount;
 use crate::links::Links;
+use crate::pressure::{check_pressure, Pressure};
 use crate::servo::{check_controls, WallControl};
 use crate::settings::{Load, Ramp, Settings};
 use crate::time_step::StiffnessSums;
@@ -49,6 +50,8 @@ pub struct State {
     pub contacts: Contacts,
     /// Imposed loads.
     pub loads: Vec<Load>,
+    /// Pressures on PFacets (follower loads).
+    pub pressures: Vec<Pressure>,
     /// How each wall moves, one per wall of the model (the servo of a stress-controlled wall
     /// sets its velocity each step; the velocity itself is the wall's, in the model).
     pub wall_controls: Vec<WallControl>,
@@ -73,6 +76,7 @@ impl State {
             links,
             contacts: Contacts::default(),
             loads: Vec::new(),
+            pressures: Vec::new(),
             wall_controls,
             clock: Clock::default(),
             energy: EnergyAccount::default(),
@@ -89,10 +93,11 @@ impl State {
 
     /// Checks the whole state as [`crate::Simulation::new`] checks a new one, and for
     /// consistency between its parts (a state read from a file may be damaged): links,
-    /// stiffness sums, loads and contacts that fit the model, one valid control per wall, a
-    /// positive finite time step.
+    /// stiffness sums, loads, pressures and contacts that fit the model, one valid control
+    /// per wall, a positive finite time step.
     pub(crate) fn check(&self) -> Result<(), SimulationError> {
         State::check_parts(&self.model, &self.settings)?;
+        check_pressures(&self.pressures, &self.model)?;
         check_controls(&self.wall_controls, self.model.walls.len())?;
         if !self.is_consistent() {
             return Err(SimulationError::Setting {
@@ -124,6 +129,14 @@ impl State {
             && c.previous_dt.is_finite()
             && c.time.is_finite()
     }
+}
+
+/// Checks each pressure against `model` (PFacet ids in range, finite values).
+pub(crate) fn check_pressures(
+    pressures: &[Pressure],
+    model: &Model,
+) -> Result<(), SimulationError> {
+    pressures.iter().try_for_each(|p| check_pressure(p, model.pfacets.len()))
 }
 
 /// Whether the nodes of both sites of `c` are among the `n` particles.

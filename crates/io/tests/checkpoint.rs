@@ -351,9 +351,11 @@ fn foreign_and_odd_files_give_their_error() {
     assert!(matches!(empty, Err(CheckpointError::TooShort { len: 0, .. })), "{empty:?}");
 
     // 2: the format of the engine's former `Snapshot`, before the `State` of version 3;
-    // 3: the `State` before the wall controls of version 4
-    let older = [(CHECKPOINT_VERSION + 1, "newer"), (0, "older"), (2, "older"), (3, "older")];
-    assert_eq!(CHECKPOINT_VERSION, 4);
+    // 3: the `State` before the wall controls of version 4;
+    // 4: the `State` before its pressures on PFacets
+    let older =
+        [(CHECKPOINT_VERSION + 1, "newer"), (0, "older"), (2, "older"), (3, "older"), (4, "older")];
+    assert_eq!(CHECKPOINT_VERSION, 5);
     for (version, word) in older {
         let mut bytes = valid.to_vec();
         bytes[8..12].copy_from_slice(&version.to_le_bytes());

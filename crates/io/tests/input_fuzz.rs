@@ -481,6 +481,11 @@ fn build_and_step(scene: Scene) {
             return;
         }
     }
+    for pressure in scene.pressures {
+        if sim.add_pressure(pressure).is_err() {
+            return;
+        }
+    }
     if elements <= 20_000 {
         let _ = sim.run(2);
     }

@@ -25,6 +25,7 @@ fn quantity_label(quantity: &Quantity) -> &'static str {
         Quantity::WallForce(_) => "force (N)",
         Quantity::WallStress { .. } | Quantity::Stress { .. } => "stress (Pa)",
         Quantity::SolidFraction(_) => "solid fraction",
+        Quantity::EnclosedVolume { .. } => "volume (m³)",
     }
 }
 

@@ -52,6 +52,16 @@ pub enum Quantity {
     /// The solid fraction of a region (centre counting, `flexdem_integrate::solid_fraction`):
     /// 1 column `solid_fraction`.
     SolidFraction(Region),
+    /// Volume enclosed by the PFacets of a structure (m³), each of its open ends closed by
+    /// the plane of one of `walls` (the nearest; one per open end, none for a closed shell):
+    /// 1 column `volume` (see [`flexdem_elements::structure_volume`]; NaN if it cannot be
+    /// measured any more).
+    EnclosedVolume {
+        /// The structure.
+        structure: u32,
+        /// The walls whose current planes close its open ends.
+        walls: Vec<u32>,
+    },
 }
 
 /// One named quantity of the CSV series; the name prefixes its columns.
@@ -139,7 +149,8 @@ fn stress_values(sim: &Simulation, region: &Region, volume: Option<Real>) -> [Re
 
 /// Column names of one series, each `NAME_COMPONENT_UNIT`: `tip_x_m`, `tip_vx_m_per_s`,
 /// `tip_wx_rad_per_s`, `e_kinetic_translation_J`, `load_fx_N`, `n_count`,
-/// `top_normal_stress_Pa`, `sample_szz_Pa`, `sample_mean_stress_Pa`, `sample_solid_fraction`.
+/// `top_normal_stress_Pa`, `sample_szz_Pa`, `sample_mean_stress_Pa`, `sample_solid_fraction`,
+/// `membrane_volume_m3`.
 pub fn series_columns(spec: &SeriesSpec) -> Vec<String> {
     let name = &spec.name;
     let triple = |prefix: &str, unit: &str| -> Vec<String> {
@@ -158,6 +169,7 @@ pub fn series_columns(spec: &SeriesSpec) -> Vec<String> {
             STRESS_COMPONENTS.iter().map(|c| format!("{name}_{c}_Pa")).collect()
         }
         Quantity::SolidFraction(_) => vec![format!("{name}_solid_fraction")],
+        Quantity::EnclosedVolume { .. } => vec![format!("{name}_volume_m3")],
     }
 }
 
@@ -169,7 +181,8 @@ pub fn header_columns(series: &[SeriesSpec]) -> Vec<String> {
 }
 
 /// Checks a series list against a simulation: names valid and distinct, particle and wall ids
-/// in range, selections not empty, areas, volumes and regions valid.
+/// in range, selections not empty, areas, volumes and regions valid, enclosed volumes
+/// measurable (structure and walls exist, one wall per open end).
 pub fn validate_series(series: &[SeriesSpec], sim: &Simulation) -> Result<(), OutputError> {
     let count = sim.model().particles.pos.len();
     for (i, spec) in series.iter().enumerate() {
@@ -214,7 +227,8 @@ pub fn validate_series(series: &[SeriesSpec], sim: &Simulation) -> Result<(), Ou
     Ok(())
 }
 
-/// What is wrong with the wall, area, region or volume of a quantity, if anything.
+/// What is wrong with the wall, area, region or volume of a quantity, or what keeps an
+/// enclosed volume from being measured, if anything.
 fn check_measure(quantity: &Quantity, sim: &Simulation) -> Result<(), String> {
     let walls = sim.model().walls.len();
     let wall_exists = |w: u32| {
@@ -242,8 +256,25 @@ fn check_measure(quantity: &Quantity, sim: &Simulation) -> Result<(), String> {
             volume.map_or(Ok(()), |v| positive(v, "volume (m³)"))
         }
         Quantity::SolidFraction(region) => region.validate().map_err(|e| e.to_string()),
+        Quantity::EnclosedVolume { structure, walls } => {
+            enclosed_volume(sim, *structure, walls).map(|_| ())
+        }
         _ => Ok(()),
     }
+}
+
+/// The volume enclosed by the PFacets of `structure`, closed by the current planes of
+/// `walls` (m³), or what prevents measuring it.
+fn enclosed_volume(sim: &Simulation, structure: u32, walls: &[u32]) -> Result<Real, String> {
+    let model = sim.model();
+    let planes = walls
+        .iter()
+        .map(|&w| match model.walls.get(w as usize) {
+            Some(wall) => Ok(wall.plane()),
+            None => Err(format!("wall {w} does not exist (the model has {})", model.walls.len())),
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    flexdem_elements::structure_volume(model, structure, &planes).map_err(|e| e.to_string())
 }
 
 /// Pushes the three components of `v` onto `row`.
@@ -298,6 +329,9 @@ pub fn series_values(spec: &SeriesSpec, sim: &Simulation, row: &mut Vec<Real>) {
             row.extend_from_slice(&stress_values(sim, region, *volume))
         }
         Quantity::SolidFraction(region) => row.push(solid_fraction(&sim.model().particles, region)),
+        Quantity::EnclosedVolume { structure, walls } => {
+            row.push(enclosed_volume(sim, *structure, walls).unwrap_or(Real::NAN));
+        }
     }
 }
 

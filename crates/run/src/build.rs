@@ -1,6 +1,6 @@
-//! From a scene to a simulation: the model and settings to the engine, the loads added and
-//! the wall controls set, the run length checked at the time step the engine chose; and the
-//! worker threads.
+//! From a scene to a simulation: the model and settings to the engine, the loads and
+//! pressures added and the wall controls set, the run length checked at the time step the
+//! engine chose; and the worker threads.
 
 use crate::error::RunError;
 use flexdem_integrate::Simulation;
@@ -21,8 +21,8 @@ pub struct SceneRest {
     pub source: PathBuf,
 }
 
-/// The simulation of `scene` with its loads and wall controls, and the rest of the scene. Errors name the scene
-/// file; they are all bad input.
+/// The simulation of `scene` with its loads, pressures and wall controls, and the rest of the
+/// scene. Errors name the scene file; they are all bad input.
 pub fn build_simulation(scene: Scene) -> Result<(Simulation, SceneRest), RunError> {
     let source = scene.source.clone();
     let refused = |source_error| RunError::Simulation {
@@ -32,6 +32,9 @@ pub fn build_simulation(scene: Scene) -> Result<(Simulation, SceneRest), RunErro
     let mut sim = Simulation::new(scene.model, scene.settings).map_err(refused)?;
     for load in scene.loads {
         sim.add_load(load).map_err(refused)?;
+    }
+    for pressure in scene.pressures {
+        sim.add_pressure(pressure).map_err(refused)?;
     }
     for (w, control) in scene.wall_controls.into_iter().enumerate() {
         sim.set_wall_control(w as u32, control).map_err(refused)?;

@@ -1,6 +1,6 @@
 //! Schema → [`Scene`]: settings, materials, then structures, spheres and walls (in file
-//! order within each section), then boundary conditions, loads and outputs, which select
-//! what was built.
+//! order within each section), then boundary conditions, loads, pressures and outputs, which
+//! select what was built.
 
 use crate::builder::Builder;
 use crate::built::SceneNames;
@@ -56,6 +56,7 @@ pub(crate) fn build(file: SceneFile, ctx: Ctx<'_>, source: &Path) -> Result<Scen
         b.add_boundary(bc)?;
     }
     let loads = file.loads.iter().map(|l| b.selector().load(l)).collect::<Result<Vec<_>, _>>()?;
+    let pressures = file.pressures.iter().map(|p| b.pressure(p)).collect::<Result<Vec<_>, _>>()?;
     let output = match &file.output {
         Some(o) => b.output(o)?,
         None => OutputSettings {
@@ -73,6 +74,7 @@ pub(crate) fn build(file: SceneFile, ctx: Ctx<'_>, source: &Path) -> Result<Scen
         model: b.model,
         settings,
         loads,
+        pressures,
         names: b.names,
         wall_controls: b.wall_controls,
         run,

@@ -1,7 +1,7 @@
 //! Scene files: a TOML description of a simulation (settings, materials, structures from the
-//! builders or from mesh files, free spheres, walls, boundary conditions, loads and outputs),
-//! read into a [`Scene`] ready for [`flexdem_integrate::Simulation::new`]. The keys, their
-//! units and defaults are in `docs/scene-reference.md`.
+//! builders or from mesh files, free spheres, walls, boundary conditions, loads, pressures
+//! and outputs), read into a [`Scene`] ready for [`flexdem_integrate::Simulation::new`]. The
+//! keys, their units and defaults are in `docs/scene-reference.md`.
 //!
 //! Every error names the file, the line and column, the key and what is expected; unknown
 //! keys are errors, with the nearest known key suggested. Relative paths (meshes, the output
@@ -24,6 +24,7 @@ mod output;
 mod output_measures;
 pub mod packing;
 pub mod placement;
+mod pressure;
 mod read;
 pub mod region;
 mod run_length;

@@ -3,13 +3,22 @@
 use crate::builder::Builder;
 use crate::error::{unknown_name, SceneError};
 use crate::output_measures::MEASURES;
-use crate::schema::{OutputSpec, S};
+use crate::schema::{OutputSpec, SeriesSpecToml, S};
+use flexdem_elements::{structure_volume, VolumeError};
 use flexdem_output::{OutputSettings, Quantity, SeriesSpec};
 
-/// The series quantities of particles and of the whole simulation (those of walls and
-/// samples are [`MEASURES`]).
-const QUANTITIES: [&str; 7] =
-    ["position", "velocity", "angular_velocity", "force", "energy", "contacts", "broken_links"];
+/// The series quantities of particles, of the whole simulation and of a structure's enclosed
+/// volume (those of walls and samples are [`MEASURES`]).
+const QUANTITIES: [&str; 8] = [
+    "position",
+    "velocity",
+    "angular_velocity",
+    "force",
+    "energy",
+    "contacts",
+    "broken_links",
+    "volume",
+];
 
 impl Builder<'_> {
     /// Reads the `[output]` table.
@@ -60,6 +69,18 @@ impl Builder<'_> {
                 ));
             }
             self.check_measure_keys(sp)?;
+            if q == "volume" {
+                let quantity = self.volume_quantity(s)?;
+                series.push(SeriesSpec { name: name.clone(), quantity });
+                continue;
+            }
+            if let Some(w) = &sp.walls {
+                return Err(ctx.at(
+                    w.span(),
+                    "output.series.walls",
+                    format!("applies to quantity = \"volume\" only, not \"{q}\": remove it"),
+                ));
+            }
             let needs_selection =
                 matches!(q, "position" | "velocity" | "angular_velocity" | "force");
             let ids = match (&sp.of, needs_selection) {
@@ -116,5 +137,77 @@ impl Builder<'_> {
             series,
             plot: o.plot.unwrap_or(false),
         })
+    }
+}
+
+impl Builder<'_> {
+    /// `quantity = "volume"`: the volume enclosed by the PFacets of the structure named in
+    /// `of = { structure = "name" }`, its open ends closed by the `[[walls]]` of `walls`
+    /// (indices), checked now on the scene as built.
+    fn volume_quantity(&self, s: &S<SeriesSpecToml>) -> Result<Quantity, SceneError> {
+        let ctx = self.ctx;
+        let sp = s.get_ref();
+        let usage = "quantity = \"volume\" needs `of = { structure = \"name\" }` (the volume \
+                     its PFacets enclose) and no other selection key";
+        let Some(of) = &sp.of else {
+            return Err(ctx.missing(s.span(), "output.series.of", usage));
+        };
+        let sel = of.get_ref();
+        let others = sel.spheres.is_some()
+            || sel.ids.is_some()
+            || sel.side.is_some()
+            || sel.region.is_some()
+            || sel.plane.is_some();
+        let name = match &sel.structure {
+            Some(name) if !others => name,
+            _ => return Err(ctx.at(of.span(), "output.series.of", usage)),
+        };
+        let structure = self.named_structure(name, "output.series.of.structure")?.id;
+        let count = self.model.walls.len();
+        let mut walls: Vec<u32> = Vec::new();
+        if let Some(list) = &sp.walls {
+            for &w in list.get_ref() {
+                let id = match u32::try_from(w) {
+                    Ok(id) if (id as usize) < count => id,
+                    _ => {
+                        return Err(ctx.at(
+                            list.span(),
+                            "output.series.walls",
+                            format!(
+                                "wall {w} does not exist: the scene has {count} [[walls]] \
+                                 (indices 0..{count}, in file order)"
+                            ),
+                        ))
+                    }
+                };
+                if walls.contains(&id) {
+                    return Err(ctx.at(
+                        list.span(),
+                        "output.series.walls",
+                        format!("wall {id} is given twice"),
+                    ));
+                }
+                walls.push(id);
+            }
+        }
+        let planes: Vec<_> = walls.iter().map(|&w| self.model.walls[w as usize].plane()).collect();
+        if let Err(e) = structure_volume(&self.model, structure, &planes) {
+            let hint = match e {
+                VolumeError::NotClosed { .. } => {
+                    " (`walls = [i, j]`: indices of [[walls]] in file order)"
+                }
+                _ => "",
+            };
+            let (span, key) = match &sp.walls {
+                Some(w) => (w.span(), "output.series.walls"),
+                None => (of.span(), "output.series.of"),
+            };
+            let message = match e {
+                VolumeError::NoPFacets { .. } => format!("{e}"),
+                _ => format!("structure `{}`: {e}{hint}", name.get_ref()),
+            };
+            return Err(ctx.at(span, key, message));
+        }
+        Ok(Quantity::EnclosedVolume { structure, walls })
     }
 }

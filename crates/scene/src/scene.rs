@@ -3,7 +3,7 @@
 use crate::built::SceneNames;
 use crate::run_length::RunLength;
 use flexdem_elements::Model;
-use flexdem_integrate::{Load, Settings, WallControl};
+use flexdem_integrate::{Load, Pressure, Settings, WallControl};
 use flexdem_output::OutputSettings;
 use std::path::PathBuf;
 
@@ -20,6 +20,8 @@ pub struct Scene {
     pub settings: Settings,
     /// Imposed forces and moments, to add with `Simulation::add_load`.
     pub loads: Vec<Load>,
+    /// Pressures on PFacets, to add with `Simulation::add_pressure`.
+    pub pressures: Vec<Pressure>,
     /// The structures and sphere groups by name, for selections after the build
     /// ([`crate::parse_loads`]).
     pub names: SceneNames,

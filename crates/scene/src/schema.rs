@@ -76,6 +76,8 @@ pub(crate) struct SceneFile {
     pub boundary: Vec<S<BoundarySpec>>,
     #[serde(default)]
     pub loads: Vec<S<LoadSpec>>,
+    #[serde(default)]
+    pub pressures: Vec<S<PressureSpec>>,
     pub output: Option<S<OutputSpec>>,
 }
 
@@ -352,6 +354,18 @@ pub(crate) struct LoadSpec {
     pub ramp: Option<S<RampSpec>>,
 }
 
+/// `[[pressures]]`: a pressure on the PFacets of a structure (`structure`) or on those whose
+/// three nodes a selection picks (`select`).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct PressureSpec {
+    pub structure: Option<S<String>>,
+    pub select: Option<S<SelectSpec>>,
+    pub pressure: S<f64>,
+    pub flip: Option<bool>,
+    pub ramp: Option<S<RampSpec>>,
+}
+
 /// `[output]`.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -371,6 +385,8 @@ pub(crate) struct SeriesSpecToml {
     pub name: S<String>,
     pub quantity: S<String>,
     pub of: Option<S<SelectSpec>>,
+    // volume: indices of the [[walls]] closing the structure's open ends
+    pub walls: Option<S<Vec<i64>>>,
     // wall_force, wall_stress
     pub wall: Option<S<i64>>,
     pub area: Option<S<f64>>,

@@ -18,6 +18,9 @@ fn load_and_simulate(name: &str) -> Scene {
     for load in &scene.loads {
         sim.add_load(load.clone()).unwrap_or_else(|e| panic!("{name}: add_load: {e}"));
     }
+    for pressure in &scene.pressures {
+        sim.add_pressure(pressure.clone()).unwrap_or_else(|e| panic!("{name}: add_pressure: {e}"));
+    }
     assert!(sim.dt() > 0.0, "{name}: dt = {}", sim.dt());
     scene
 }

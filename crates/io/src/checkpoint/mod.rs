@@ -23,7 +23,9 @@
 //! Version 3 stores the engine's [`State`] (version 2 stored its predecessor, `Snapshot`,
 //! with the same parts in another order): files of version 2 are refused with that message.
 //! Version 4 adds the wall controls to the [`State`] (`State::wall_controls`: strain control
-//! or a servo holding a stress, one per wall).
+//! or a servo holding a stress, one per wall); version 5 the pressures on PFacets
+//! (`State::pressures`) and the enclosed-volume quantity of the output series. Files of older
+//! versions are refused with the version error, which says so.
 //!
 //! # Writing
 //!
@@ -64,7 +66,7 @@ use std::path::{Path, PathBuf};
 pub const CHECKPOINT_MAGIC: [u8; 8] = *b"FLXDMCKP";
 
 /// The format version this build writes and reads (see the module documentation).
-pub const CHECKPOINT_VERSION: u32 = 4;
+pub const CHECKPOINT_VERSION: u32 = 5;
 
 /// Size of the header before the payload: magic, version, length, checksum (bytes).
 pub const CHECKPOINT_HEADER_LEN: usize = 24;
