@@ -51,6 +51,7 @@ mod plot;
 mod pvd;
 mod series;
 mod table;
+pub mod triaxial;
 mod vtk;
 mod writer;
 

@@ -26,7 +26,31 @@ fn quantity_label(quantity: &Quantity) -> &'static str {
         Quantity::WallStress { .. } | Quantity::Stress { .. } => "stress (Pa)",
         Quantity::SolidFraction(_) => "solid fraction",
         Quantity::EnclosedVolume { .. } => "volume (m³)",
+        Quantity::Triaxial(_) => "",
     }
+}
+
+/// The two charts of a triaxial series whose columns are `first..` in `rows` (in the order of
+/// [`crate::triaxial::TRIAXIAL_COLUMNS`]): the stress ratio q/p and the volumetric strain,
+/// both against the axial strain (the curves of a drained triaxial test).
+fn triaxial_charts(name: &str, first: usize, rows: &[Vec<Real>]) -> [LineChart; 2] {
+    let value = |row: &Vec<Real>, k: usize| row.get(first + k).copied().unwrap_or(Real::NAN);
+    // columns: 0 axial strain, 1 volumetric strain, 4 mean stress, 5 deviator stress
+    let ratio = rows
+        .iter()
+        .map(|r| (value(r, 0), if value(r, 4) != 0.0 { value(r, 5) / value(r, 4) } else { 0.0 }))
+        .collect();
+    let volumetric = rows.iter().map(|r| (value(r, 0), value(r, 1))).collect();
+    [
+        LineChart::new(&format!("{name}: stress ratio"), "axial strain", "q/p")
+            .with_curve(Curve::new("q/p", ratio, CurveStyle::Line)),
+        LineChart::new(&format!("{name}: volumetric strain"), "axial strain", "volumetric strain")
+            .with_curve(Curve::new(
+                "volumetric strain (contraction > 0)",
+                volumetric,
+                CurveStyle::Line,
+            )),
+    ]
 }
 
 /// The chart of `spec`, whose columns are `first..` in `rows`.
@@ -58,7 +82,11 @@ pub fn plot_series(
     let mut figure = Figure::new(WIDTH, CHART_HEIGHT);
     let mut first = 2;
     for spec in series {
-        figure.charts.push(series_chart(spec, first, rows));
+        if matches!(spec.quantity, Quantity::Triaxial(_)) {
+            figure.charts.extend(triaxial_charts(&spec.name, first, rows));
+        } else {
+            figure.charts.push(series_chart(spec, first, rows));
+        }
         first += series_columns(spec).len();
     }
     figure

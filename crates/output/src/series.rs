@@ -2,6 +2,7 @@
 //! names (with units) and their values taken from a simulation.
 
 use crate::error::OutputError;
+use crate::triaxial::{triaxial_state, TriaxialSpec, TRIAXIAL_COLUMNS};
 use flexdem_geom::{Real, Vec3};
 use flexdem_integrate::{
     deviator_stress, love_weber_stress, mean_stress, solid_fraction, wall_normal_stress, Region,
@@ -62,6 +63,11 @@ pub enum Quantity {
         /// The walls whose current planes close its open ends.
         walls: Vec<u32>,
     },
+    /// A triaxial test's measures (see [`crate::triaxial`]): 8 columns `axial_strain`,
+    /// `volumetric_strain`, `axial_stress`, `confining_stress`, `mean_stress`,
+    /// `deviator_stress` (Pa), `height` (m) and `volume` (m³); NaN if they cannot be measured
+    /// any more.
+    Triaxial(TriaxialSpec),
 }
 
 /// One named quantity of the CSV series; the name prefixes its columns.
@@ -170,6 +176,18 @@ pub fn series_columns(spec: &SeriesSpec) -> Vec<String> {
         }
         Quantity::SolidFraction(_) => vec![format!("{name}_solid_fraction")],
         Quantity::EnclosedVolume { .. } => vec![format!("{name}_volume_m3")],
+        Quantity::Triaxial(_) => {
+            TRIAXIAL_COLUMNS
+                .iter()
+                .map(|(c, unit)| {
+                    if unit.is_empty() {
+                        format!("{name}_{c}")
+                    } else {
+                        format!("{name}_{c}_{unit}")
+                    }
+                })
+                .collect()
+        }
     }
 }
 
@@ -259,6 +277,15 @@ fn check_measure(quantity: &Quantity, sim: &Simulation) -> Result<(), String> {
         Quantity::EnclosedVolume { structure, walls } => {
             enclosed_volume(sim, *structure, walls).map(|_| ())
         }
+        Quantity::Triaxial(spec) => {
+            if !(spec.height0 > 0.0 && spec.volume0 > 0.0) {
+                return Err(format!(
+                    "the sample's reference height {} m and volume {} m³ must be > 0",
+                    spec.height0, spec.volume0
+                ));
+            }
+            triaxial_state(sim, spec).map(|_| ())
+        }
         _ => Ok(()),
     }
 }
@@ -332,6 +359,10 @@ pub fn series_values(spec: &SeriesSpec, sim: &Simulation, row: &mut Vec<Real>) {
         Quantity::EnclosedVolume { structure, walls } => {
             row.push(enclosed_volume(sim, *structure, walls).unwrap_or(Real::NAN));
         }
+        Quantity::Triaxial(spec) => match triaxial_state(sim, spec) {
+            Ok(state) => row.extend_from_slice(&state.values(spec)),
+            Err(_) => row.extend_from_slice(&[Real::NAN; TRIAXIAL_COLUMNS.len()]),
+        },
     }
 }
 

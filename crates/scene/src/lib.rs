@@ -22,6 +22,7 @@ mod loads;
 pub mod memory;
 mod output;
 mod output_measures;
+mod output_triaxial;
 pub mod packing;
 pub mod placement;
 mod pressure;

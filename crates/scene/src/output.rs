@@ -9,7 +9,7 @@ use flexdem_output::{OutputSettings, Quantity, SeriesSpec};
 
 /// The series quantities of particles, of the whole simulation and of a structure's enclosed
 /// volume (those of walls and samples are [`MEASURES`]).
-const QUANTITIES: [&str; 8] = [
+const QUANTITIES: [&str; 9] = [
     "position",
     "velocity",
     "angular_velocity",
@@ -18,6 +18,7 @@ const QUANTITIES: [&str; 8] = [
     "contacts",
     "broken_links",
     "volume",
+    "triaxial",
 ];
 
 impl Builder<'_> {
@@ -69,6 +70,18 @@ impl Builder<'_> {
                 ));
             }
             self.check_measure_keys(sp)?;
+            if q == "triaxial" {
+                let quantity = self.triaxial_quantity(s)?;
+                series.push(SeriesSpec { name: name.clone(), quantity });
+                continue;
+            }
+            if let Some(w) = &sp.lateral_walls {
+                return Err(ctx.at(
+                    w.span(),
+                    "output.series.lateral_walls",
+                    format!("applies to quantity = \"triaxial\" only, not \"{q}\": remove it"),
+                ));
+            }
             if q == "volume" {
                 let quantity = self.volume_quantity(s)?;
                 series.push(SeriesSpec { name: name.clone(), quantity });
@@ -78,7 +91,9 @@ impl Builder<'_> {
                 return Err(ctx.at(
                     w.span(),
                     "output.series.walls",
-                    format!("applies to quantity = \"volume\" only, not \"{q}\": remove it"),
+                    format!(
+                    "applies to quantity = \"volume\" or \"triaxial\" only, not \"{q}\": remove it"
+                ),
                 ));
             }
             let needs_selection =

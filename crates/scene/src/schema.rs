@@ -385,8 +385,11 @@ pub(crate) struct SeriesSpecToml {
     pub name: S<String>,
     pub quantity: S<String>,
     pub of: Option<S<SelectSpec>>,
-    // volume: indices of the [[walls]] closing the structure's open ends
+    // volume: indices of the [[walls]] closing the structure's open ends; triaxial: the
+    // platens
     pub walls: Option<S<Vec<i64>>>,
+    // triaxial between rigid walls: the four lateral walls
+    pub lateral_walls: Option<S<Vec<i64>>>,
     // wall_force, wall_stress
     pub wall: Option<S<i64>>,
     pub area: Option<S<f64>>,
