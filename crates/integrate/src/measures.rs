@@ -18,6 +18,50 @@ pub fn wall_normal_stress(wall: &Wall, force: &Vec3, area: Real) -> Real {
     normal_force(wall, force) / area
 }
 
+/// Distance between the planes of two facing walls, `(x_b − x_a)·n_a` (m), or why there is
+/// none.
+pub fn wall_gap(model: &Model, a: u32, b: u32) -> Result<Real, String> {
+    let wall = |w: u32| {
+        model
+            .walls
+            .get(w as usize)
+            .ok_or_else(|| format!("wall {w} does not exist (the model has {})", model.walls.len()))
+    };
+    let (wa, wb) = (wall(a)?, wall(b)?);
+    Ok((wb.point - wa.point).dot(&wa.normal))
+}
+
+/// The volume of a membrane sample (m³): the volume enclosed by the PFacets of `structure`
+/// closed by the planes of the walls `platens` (`flexdem_elements::structure_volume`), less
+/// `Σ r_f·A_f` over its PFacets (radius times area: the half thickness between the
+/// mid-surface and the grains, to first order in radius/curvature radius).
+pub fn membrane_sample_volume(
+    model: &Model,
+    structure: u32,
+    platens: [u32; 2],
+) -> Result<Real, String> {
+    let planes = platens
+        .iter()
+        .map(|&w| {
+            model.walls.get(w as usize).map(|wall| wall.plane()).ok_or_else(|| {
+                format!("wall {w} does not exist (the model has {})", model.walls.len())
+            })
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let mid =
+        flexdem_elements::structure_volume(model, structure, &planes).map_err(|e| e.to_string())?;
+    let st = &model.structures[structure as usize];
+    let pos = &model.particles.pos;
+    let half_thickness: Real = model.pfacets[st.pfacets.start as usize..st.pfacets.end as usize]
+        .iter()
+        .map(|f| {
+            let [a, b, c] = f.nodes.map(|n| pos[n as usize]);
+            f.radius * 0.5 * (b - a).cross(&(c - a)).norm()
+        })
+        .sum();
+    Ok(mid.abs() - half_thickness)
+}
+
 /// The free sphere a contact site is on, if it is on one.
 fn sphere_of(site: &Site, p: &Particles) -> Option<usize> {
     match site.feature {

@@ -115,12 +115,64 @@ pub struct StressControl {
     pub gain: Option<Real>,
     /// Largest normal speed of the wall (m/s, > 0).
     pub max_speed: Real,
+    /// What the area follows as the sample deforms, measured each step (None: `area` is
+    /// constant, the servo holds a force).
+    pub section: Option<SampleSection>,
+}
+
+/// A sample's section that a stress-controlled wall's area follows, measured each step, so
+/// that the servo holds a stress rather than a force.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub enum SampleSection {
+    /// The mean cross-section `V/H` of a membrane sample: `V` the volume inside the PFacets
+    /// of `structure` between the planes of the walls `platens`
+    /// ([`crate::membrane_sample_volume`]), `H` the platens' distance (the area under a
+    /// platen).
+    Membrane {
+        /// The membrane's structure.
+        structure: u32,
+        /// The two platens (walls), facing each other.
+        platens: [u32; 2],
+    },
+    /// The rectangle whose sides are the distances between two pairs of facing walls (a
+    /// platen between four lateral walls, or a lateral wall between the platens and the
+    /// other two lateral walls).
+    Rectangle {
+        /// The first pair of walls.
+        a: [u32; 2],
+        /// The second pair of walls.
+        b: [u32; 2],
+    },
+}
+
+impl SampleSection {
+    /// The section's area now (m²), or why it cannot be measured.
+    pub fn area(&self, model: &flexdem_elements::Model) -> Result<Real, String> {
+        match *self {
+            SampleSection::Membrane { structure, platens } => {
+                let height = crate::wall_gap(model, platens[0], platens[1])?;
+                Ok(crate::membrane_sample_volume(model, structure, platens)? / height)
+            }
+            SampleSection::Rectangle { a, b } => {
+                Ok(crate::wall_gap(model, a[0], a[1])? * crate::wall_gap(model, b[0], b[1])?)
+            }
+        }
+    }
 }
 
 impl StressControl {
     /// The normal force the servo aims at, `target·area` (N).
     pub fn target_force(&self) -> Real {
         self.target * self.area
+    }
+
+    /// This servo with its area measured now in `model` when it follows a section (kept if
+    /// the section cannot be measured or is not positive).
+    pub fn with_current_area(&self, model: &flexdem_elements::Model) -> StressControl {
+        match self.section.map(|s| s.area(model)) {
+            Some(Ok(area)) if area > 0.0 && area.is_finite() => StressControl { area, ..*self },
+            _ => *self,
+        }
     }
 
     /// Checks every value, naming the bad one: a finite target ≥ 0, a finite area, gain and
@@ -217,14 +269,17 @@ pub fn normal_force(wall: &Wall, force: &Vec3) -> Real {
 /// `dt` long) from the loads on it (the tangential part of its velocity is kept); a wall
 /// whose servo has ended takes its later velocity. Returns whether a wall is steered.
 pub(crate) fn steer_walls(
-    walls: &mut [Wall],
+    model: &mut flexdem_elements::Model,
     controls: &[WallControl],
     loads: &WallLoads,
     time: Real,
     dt: Real,
 ) -> bool {
     let mut steered = false;
-    for (w, (wall, control)) in walls.iter_mut().zip(controls).enumerate() {
+    // the servos' areas from the walls where they are now, before any velocity changes
+    let servos: Vec<Option<StressControl>> =
+        controls.iter().map(|c| c.servo_at(time).map(|s| s.with_current_area(model))).collect();
+    for (w, (wall, control)) in model.walls.iter_mut().zip(controls).enumerate() {
         if let WallControl::StressUntil { until, then, .. } = control {
             if time >= *until {
                 steered |= wall.velocity != *then;
@@ -232,7 +287,7 @@ pub(crate) fn steer_walls(
                 continue;
             }
         }
-        let Some(servo) = control.servo_at(time) else { continue };
+        let Some(servo) = servos[w] else { continue };
         let f_n = normal_force(wall, &loads.force[w]);
         let speed = servo.normal_speed(f_n, loads.stiffness[w], dt);
         let n = wall.normal;
@@ -247,7 +302,7 @@ mod tests {
     use super::*;
 
     fn servo(gain: Option<Real>) -> StressControl {
-        StressControl { target: 1e5, area: 0.01, gain, max_speed: 0.1 }
+        StressControl { target: 1e5, area: 0.01, gain, max_speed: 0.1, section: None }
     }
 
     #[test]
@@ -293,41 +348,45 @@ mod tests {
 
     #[test]
     fn steering_keeps_the_tangential_velocity() {
-        let mut walls = [Wall {
+        let walls = [Wall {
             point: Vec3::zeros(),
             normal: Vec3::new(0.0, 0.0, -1.0),
             velocity: Vec3::new(0.2, 0.0, 5.0),
             material: 0,
             mask: 1,
         }];
+        let mut model = flexdem_elements::Model::new();
+        model.walls = walls.to_vec();
         let loads = WallLoads { force: vec![Vec3::new(0.0, 0.0, 400.0)], stiffness: vec![0.0] };
         let controls = [WallControl::Stress(servo(Some(1e-5)))];
-        assert!(steer_walls(&mut walls, &controls, &loads, 0.0, 1e-6));
+        assert!(steer_walls(&mut model, &controls, &loads, 0.0, 1e-6));
         // F_n = 400 N < 1 kN: down into the bodies (along n = −z) at 6 mm/s
-        assert!((walls[0].velocity - Vec3::new(0.2, 0.0, -6e-3)).norm() < 1e-15);
-        assert!(!steer_walls(&mut walls, &[WallControl::Velocity], &loads, 0.0, 1e-6));
+        assert!((model.walls[0].velocity - Vec3::new(0.2, 0.0, -6e-3)).norm() < 1e-15);
+        assert!(!steer_walls(&mut model, &[WallControl::Velocity], &loads, 0.0, 1e-6));
     }
 
     #[test]
     fn a_servo_until_a_time_then_moves_at_its_later_velocity() {
-        let mut walls = [Wall {
+        let walls = [Wall {
             point: Vec3::zeros(),
             normal: Vec3::z(),
             velocity: Vec3::zeros(),
             material: 0,
             mask: 1,
         }];
+        let mut model = flexdem_elements::Model::new();
+        model.walls = walls.to_vec();
         let then = Vec3::new(0.0, 0.0, 0.02);
         let control = WallControl::StressUntil { servo: servo(Some(1e-5)), until: 1.0, then };
         let loads = WallLoads { force: vec![Vec3::zeros()], stiffness: vec![0.0] };
         // before the switch: the servo drives the unloaded wall into the bodies
-        assert!(steer_walls(&mut walls, &[control], &loads, 0.5, 1e-6));
-        assert!(walls[0].velocity.z > 0.0 && walls[0].velocity != then);
+        assert!(steer_walls(&mut model, &[control], &loads, 0.5, 1e-6));
+        assert!(model.walls[0].velocity.z > 0.0 && model.walls[0].velocity != then);
         assert_eq!(control.servo_at(0.5), control.servo());
         // from the switch on: the later velocity, and no servo
-        assert!(steer_walls(&mut walls, &[control], &loads, 1.0, 1e-6));
-        assert_eq!(walls[0].velocity, then);
-        assert!(!steer_walls(&mut walls, &[control], &loads, 2.0, 1e-6));
+        assert!(steer_walls(&mut model, &[control], &loads, 1.0, 1e-6));
+        assert_eq!(model.walls[0].velocity, then);
+        assert!(!steer_walls(&mut model, &[control], &loads, 2.0, 1e-6));
         assert_eq!(control.servo_at(1.0), None);
         let bad = WallControl::StressUntil { servo: servo(None), until: Real::NAN, then };
         assert!(bad.validate().unwrap_err().to_string().contains("servo until"));

@@ -227,7 +227,7 @@ impl Simulation {
         self.pipeline.walls.sum(&self.state.contacts.list, walls);
         let before = self.wall_power();
         let steered = steer_walls(
-            &mut self.state.model.walls,
+            &mut self.state.model,
             &self.state.wall_controls,
             &self.pipeline.walls,
             self.state.clock.time,

@@ -93,7 +93,7 @@ fn a_servo_wall_holds_its_target_stress_at_rest() {
     let model = lattice_under_a_platen(n, 3, r, 0.1 * r);
     let settings = Settings { damping: 0.3, ..Settings::default() };
     let mut sim = Simulation::new(model, settings).unwrap();
-    let servo = StressControl { target: 1e5, area, gain: None, max_speed: 0.05 };
+    let servo = StressControl { target: 1e5, area, gain: None, max_speed: 0.05, section: None };
     sim.set_wall_control(1, WallControl::Stress(servo)).unwrap();
     let mut energy_error: Real = 0.0;
     for target in [1e5, 2e5] {
@@ -151,7 +151,13 @@ fn the_work_of_a_servo_wall_closes_the_energy_balance() {
     let model = lattice_under_a_platen(1, 1, r, -1e-6);
     let settings = Settings { time_step: TimeStep::Fixed(4e-5), ..Settings::default() };
     let mut sim = Simulation::new(model, settings).unwrap();
-    let servo = StressControl { target: 1e5, area: 4.0 * r * r, gain: Some(2e-3), max_speed: 1.0 };
+    let servo = StressControl {
+        target: 1e5,
+        area: 4.0 * r * r,
+        gain: Some(2e-3),
+        max_speed: 1.0,
+        section: None,
+    };
     sim.set_wall_control(1, WallControl::Stress(servo)).unwrap();
     let mut speeds = Vec::new();
     let mut worst: Real = 0.0;
@@ -183,7 +189,13 @@ fn a_servo_wall_approaches_at_its_largest_speed() {
     let r = 0.01;
     let model = lattice_under_a_platen(1, 1, r, r);
     let mut sim = Simulation::new(model, Settings::default()).unwrap();
-    let servo = StressControl { target: 1e4, area: 4.0 * r * r, gain: Some(1.0), max_speed: 0.2 };
+    let servo = StressControl {
+        target: 1e4,
+        area: 4.0 * r * r,
+        gain: Some(1.0),
+        max_speed: 0.2,
+        section: None,
+    };
     sim.set_wall_control(1, WallControl::Stress(servo)).unwrap();
     let z0 = sim.model().walls[1].point.z;
     sim.step().unwrap();
@@ -196,7 +208,7 @@ fn a_servo_wall_approaches_at_its_largest_speed() {
 fn bad_wall_controls_are_refused_and_change_nothing() {
     let r = 0.01;
     let mut sim = Simulation::new(lattice_under_a_platen(1, 1, r, r), Settings::default()).unwrap();
-    let ok = StressControl { target: 1e4, area: 1e-3, gain: None, max_speed: 0.1 };
+    let ok = StressControl { target: 1e4, area: 1e-3, gain: None, max_speed: 0.1, section: None };
     assert_eq!(sim.wall_controls(), &[WallControl::Velocity, WallControl::Velocity]);
     let e = sim.set_wall_control(2, WallControl::Stress(ok)).unwrap_err().to_string();
     assert!(e.contains("wall id below 2"), "{e}");

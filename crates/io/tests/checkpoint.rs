@@ -190,7 +190,13 @@ fn a_run_with_a_servo_wall_restarted_from_a_checkpoint_continues_bit_identically
     }
     let settings = Settings { damping: 0.2, ..Settings::default() };
     let mut a = Simulation::new(model, settings).unwrap();
-    let servo = StressControl { target: 2e4, area: 8.0 * r * r, gain: None, max_speed: 0.05 };
+    let servo = StressControl {
+        target: 2e4,
+        area: 8.0 * r * r,
+        gain: None,
+        max_speed: 0.05,
+        section: None,
+    };
     a.set_wall_control(1, WallControl::Stress(servo)).unwrap();
     while a.wall_forces()[1] == Vec3::zeros() {
         assert!(a.steps() < 10_000, "the platen never touched the spheres");
@@ -467,7 +473,13 @@ fn damaged_contacts_and_counters_are_refused() {
         |c| c.state.clock.dt_updated_at = c.state.clock.steps + 5,
         |c| c.state.wall_controls.clear(),
         |c| {
-            let servo = StressControl { target: 1e3, area: f64::NAN, gain: None, max_speed: 1.0 };
+            let servo = StressControl {
+                target: 1e3,
+                area: f64::NAN,
+                gain: None,
+                max_speed: 1.0,
+                section: None,
+            };
             c.state.wall_controls[0] = WallControl::Stress(servo);
         },
     ];

@@ -5,10 +5,8 @@
 //!
 //! - height `H = (x_top − x_bottom)·n_bottom`, the distance between the platens' planes;
 //! - volume `V`: for a membrane, the volume enclosed by its inner surface: the volume of its
-//!   PFacets' mid-surface closed by the platens' planes (divergence theorem,
-//!   `flexdem_elements::structure_volume`) less the PFacets' radius times their area (first
-//!   order in radius/curvature radius: the half thickness between the mid-surface and the
-//!   grains); between rigid walls, `H·L₁·L₂` (L the distances between the opposite lateral
+//!   PFacets' mid-surface closed by the platens' planes less the PFacets' radius times their
+//!   area (`flexdem_integrate::membrane_sample_volume`); between rigid walls, `H·L₁·L₂` (L the distances between the opposite lateral
 //!   walls);
 //! - axial strain `εa = (H₀ − H)/H₀`, volumetric strain `εv = (V₀ − V)/V₀`, from the height
 //!   and volume at the start of the run (so they include the consolidation's strains);
@@ -19,9 +17,9 @@
 //!   current face, `H·L`);
 //! - mean stress `p = (σa + 2σr)/3`, deviator stress `q = σa − σr`.
 
-use flexdem_elements::{structure_volume, Model};
-use flexdem_geom::{Plane, Real, Vec3};
-use flexdem_integrate::{normal_force, Simulation};
+use flexdem_elements::Model;
+use flexdem_geom::{Real, Vec3};
+use flexdem_integrate::{membrane_sample_volume, normal_force, wall_gap, Simulation};
 use serde::{Deserialize, Serialize};
 
 /// How a triaxial sample is confined laterally.
@@ -101,21 +99,6 @@ impl TriaxialState {
     }
 }
 
-/// The plane of wall `w`, or why there is none.
-fn plane(model: &Model, w: u32) -> Result<Plane, String> {
-    model
-        .walls
-        .get(w as usize)
-        .map(|wall| wall.plane())
-        .ok_or_else(|| format!("wall {w} does not exist (the model has {})", model.walls.len()))
-}
-
-/// Distance between two facing walls' planes, `(x_b − x_a)·n_a` (m).
-fn gap(model: &Model, a: u32, b: u32) -> Result<Real, String> {
-    let (pa, pb) = (plane(model, a)?, plane(model, b)?);
-    Ok((pb.point - pa.point).dot(&pa.normal))
-}
-
 /// The size of a triaxial sample.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SampleGeometry {
@@ -134,7 +117,7 @@ pub fn triaxial_geometry(
     spec_platens: [u32; 2],
     lateral: &Lateral,
 ) -> Result<SampleGeometry, String> {
-    let height = gap(model, spec_platens[0], spec_platens[1])?;
+    let height = wall_gap(model, spec_platens[0], spec_platens[1])?;
     if !(height > 0.0) {
         return Err(format!(
             "the platens (walls {} and {}) are {height} m apart: they must face each other, \
@@ -144,13 +127,11 @@ pub fn triaxial_geometry(
     }
     match lateral {
         Lateral::Membrane { structure } => {
-            let planes = [plane(model, spec_platens[0])?, plane(model, spec_platens[1])?];
-            let volume = structure_volume(model, *structure, &planes).map_err(|e| e.to_string())?;
-            let volume = volume.abs() - half_thickness_volume(model, *structure);
+            let volume = membrane_sample_volume(model, *structure, spec_platens)?;
             Ok(SampleGeometry { height, volume, spans: None })
         }
         Lateral::Walls([a, a2, b, b2]) => {
-            let (l1, l2) = (gap(model, *a, *a2)?, gap(model, *b, *b2)?);
+            let (l1, l2) = (wall_gap(model, *a, *a2)?, wall_gap(model, *b, *b2)?);
             if !(l1 > 0.0 && l2 > 0.0) {
                 return Err(format!(
                     "the lateral walls {a}–{a2} and {b}–{b2} are {l1} m and {l2} m apart: each \
@@ -160,20 +141,6 @@ pub fn triaxial_geometry(
             Ok(SampleGeometry { height, volume: height * l1 * l2, spans: Some((l1, l2)) })
         }
     }
-}
-
-/// `Σ r_f·A_f` over the PFacets of `structure`: the volume between its mid-surface and its
-/// inner surface, to first order (m³).
-fn half_thickness_volume(model: &Model, structure: u32) -> Real {
-    let Some(st) = model.structures.get(structure as usize) else { return 0.0 };
-    let pos = &model.particles.pos;
-    model.pfacets[st.pfacets.start as usize..st.pfacets.end as usize]
-        .iter()
-        .map(|f| {
-            let [a, b, c] = f.nodes.map(|n| pos[n as usize]);
-            f.radius * 0.5 * (b - a).cross(&(c - a)).norm()
-        })
-        .sum()
 }
 
 /// The state of the triaxial sample of `spec` in `sim` (see the module's doc).

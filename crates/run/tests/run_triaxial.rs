@@ -193,3 +193,108 @@ of = {{ structure = "membrane" }}
     // pressed inward, the membrane encloses less
     assert!(state.volume < s.volume0);
 }
+
+/// A small membrane sample (about 600 spheres in a tube of PFacets between two platens)
+/// consolidated isotropically to 100 kPa by the membrane's pressure and a servo platen.
+const CONSOLIDATION: &str = r#"
+[simulation]
+duration = 0.03
+damping = 0.3
+energy_tolerance = 0.05
+
+[materials.sand]
+young = 1e8
+poisson = 0.3
+density = 26500
+friction_angle_deg = 30
+
+[materials.membrane]
+young = 10e6
+poisson = 0.45
+density = 1000
+friction_angle_deg = 0
+
+[materials.platen]
+young = 1e9
+poisson = 0.3
+density = 7850
+friction_angle_deg = 0
+
+[[structures]]
+name = "membrane"
+kind = "tube"
+material = "membrane"
+node_radius = 0.001
+start = [0, 0, 0.001]
+axis = [0, 0, 1]
+radius = 0.026
+length = 0.098
+around = 24
+along = 14
+
+[[spheres]]
+kind = "dense"
+material = "sand"
+cylinder = { start = [0, 0, 0], axis = [0, 0, 1], radius = 0.025, length = 0.1 }
+radius_range = [1, 2]
+count = 600
+solid_fraction = 0.55
+seed = 3
+
+[[walls]]
+point = [0, 0, 0]
+normal = [0, 0, 1]
+material = "platen"
+
+[[walls]]
+point = [0, 0, 0.1]
+normal = [0, 0, -1]
+material = "platen"
+servo = { stress = 1e5, area_of = { membrane = "membrane", platens = [0, 1] }, max_speed = 0.1 }
+
+[[pressures]]
+structure = "membrane"
+pressure = 1e5
+flip = true
+ramp = { start = 0, duration = 0.01 }
+
+[output]
+series_every = 100
+
+[[output.series]]
+name = "tx"
+quantity = "triaxial"
+walls = [0, 1]
+of = { structure = "membrane" }
+"#;
+
+#[test]
+fn after_isotropic_consolidation_the_grains_stress_is_the_confining_pressure() {
+    use flexdem_integrate::{love_weber_stress, mean_stress, Region};
+    let mut run = run_of(CONSOLIDATION);
+    let s = spec(&run);
+    run.advance(None, &mut NoObserver).unwrap();
+    let sim = run.sim();
+    let state = triaxial_state(sim, &s).unwrap();
+    assert_eq!(state.confining_stress, 1e5);
+    // the grains' stress over the sample's volume (inside the membrane, between the platens)
+    let region = Region::Cylinder {
+        start: flexdem_geom::Vec3::new(0.0, 0.0, -0.01),
+        axis: flexdem_geom::Vec3::z(),
+        radius: 0.04,
+        length: 0.12,
+    };
+    let sigma = love_weber_stress(sim.model(), sim.contacts(), &region, Some(state.volume));
+    let p = mean_stress(&sigma);
+    // the platen's stress over the sample's cross-section (the servo follows it: `area_of`)
+    // and the grains' mean stress, each within 3 % of the confining pressure
+    let platen = state.axial_stress;
+    eprintln!(
+        "platen {platen} p {p} V {} V0 {} H {} H0 {}",
+        state.volume, s.volume0, state.height, s.height0
+    );
+    assert!((platen / 1e5 - 1.0).abs() < 0.03, "platen stress {platen}");
+    assert!((p / 1e5 - 1.0).abs() < 0.03, "Love–Weber mean stress {p}, σ = {sigma}");
+    let e = sim.energy();
+    assert!(sim.energy_watch().relative_error(e).abs() < 1e-2, "energy balance");
+}

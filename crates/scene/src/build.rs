@@ -25,6 +25,7 @@ pub(crate) fn build(file: SceneFile, ctx: Ctx<'_>, source: &Path) -> Result<Scen
         materials: Vec::new(),
         names: SceneNames::empty(),
         wall_controls: Vec::new(),
+        sections: Vec::new(),
         available: crate::memory::available_memory(),
     };
     let (settings, run, threads) = b.simulation(&file.simulation)?;
@@ -52,6 +53,7 @@ pub(crate) fn build(file: SceneFile, ctx: Ctx<'_>, source: &Path) -> Result<Scen
     for w in &file.walls {
         b.add_wall(w)?;
     }
+    b.check_sections()?;
     for bc in &file.boundary {
         b.add_boundary(bc)?;
     }

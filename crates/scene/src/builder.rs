@@ -18,6 +18,9 @@ pub(crate) struct Builder<'a> {
     pub names: SceneNames,
     /// How each wall built so far moves.
     pub wall_controls: Vec<WallControl>,
+    /// Servos whose area follows a section: (wall, span of the servo, whether `area` is to be
+    /// filled from it), measured once every wall is built.
+    pub sections: Vec<(usize, std::ops::Range<usize>, bool)>,
     /// The memory available to the simulation (bytes), if known.
     pub available: Option<u64>,
 }

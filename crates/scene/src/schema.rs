@@ -291,12 +291,22 @@ pub(crate) struct WallSpec {
     pub mask: Option<S<i64>>,
 }
 
+/// `area_of = { membrane, platens }` or `area_of = { walls = [[a, a'], [b, b']] }`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct AreaOfSpec {
+    pub membrane: Option<S<String>>,
+    pub platens: Option<S<Vec<i64>>>,
+    pub walls: Option<S<Vec<Vec<i64>>>>,
+}
+
 /// `servo = { stress, area, gain, max_speed, until, velocity_after }` of a wall.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct ServoSpec {
     pub stress: S<f64>,
-    pub area: S<f64>,
+    pub area: Option<S<f64>>,
+    pub area_of: Option<S<AreaOfSpec>>,
     pub gain: Option<S<f64>>,
     pub max_speed: S<f64>,
     pub until: Option<S<f64>>,

@@ -312,8 +312,9 @@ quantity = "solid_fraction"
 box = { min = [-0.05, -0.05, 0], max = [0.05, 0.05, 0.2] }
 "#,
     );
-    let top = StressControl { target: 1e5, area: 0.01, gain: None, max_speed: 0.05 };
-    let side = StressControl { target: 5e4, area: 0.02, gain: Some(1e-6), max_speed: 0.1 };
+    let top = StressControl { target: 1e5, area: 0.01, gain: None, max_speed: 0.05, section: None };
+    let side =
+        StressControl { target: 5e4, area: 0.02, gain: Some(1e-6), max_speed: 0.1, section: None };
     assert_eq!(
         s.wall_controls,
         vec![WallControl::Velocity, WallControl::Stress(top), WallControl::Stress(side)]
@@ -338,4 +339,51 @@ box = { min = [-0.05, -0.05, 0], max = [0.05, 0.05, 0.2] }
             &Quantity::SolidFraction(block),
         ]
     );
+}
+
+/// Six walls around a 0.2 × 0.1 × 0.3 box: 0, 1 along z (the platens), 2, 3 along x, 4, 5
+/// along y; the top platen's servo is `servo`.
+fn six_walls(servo: &str) -> String {
+    let wall = |p: &str, n: &str, extra: &str| {
+        format!("\n[[walls]]\npoint = {p}\nnormal = {n}\nmaterial = \"m\"\n{extra}\n")
+    };
+    [
+        wall("[0, 0, 0]", "[0, 0, 1]", ""),
+        wall("[0, 0, 0.3]", "[0, 0, -1]", servo),
+        wall("[-0.1, 0, 0]", "[1, 0, 0]", ""),
+        wall("[0.1, 0, 0]", "[-1, 0, 0]", ""),
+        wall("[0, -0.05, 0]", "[0, 1, 0]", ""),
+        wall("[0, 0.05, 0]", "[0, -1, 0]", ""),
+    ]
+    .concat()
+}
+
+#[test]
+fn a_servo_follows_the_section_between_walls_and_refuses_a_bad_one() {
+    let s = scene(&six_walls(
+        "servo = { stress = 1e5, area_of = { walls = [[2, 3], [4, 5]] }, max_speed = 0.1 }",
+    ));
+    let flexdem_integrate::WallControl::Stress(servo) = s.wall_controls[1] else {
+        panic!("{:?}", s.wall_controls)
+    };
+    // the area measured at the build: 0.2 m × 0.1 m
+    assert!((servo.area - 0.02).abs() < 1e-15, "{}", servo.area);
+    assert!(servo.section.is_some());
+    let err = |servo: &str| {
+        parse_scene(&format!("{HEAD}{}", six_walls(servo)), Path::new("t.toml"))
+            .unwrap_err()
+            .to_string()
+    };
+    let e =
+        err("servo = { stress = 1e5, area_of = { walls = [[2, 3], [4, 9]] }, max_speed = 0.1 }");
+    assert!(e.contains("walls.servo.area_of") && e.contains("wall 9 does not exist"), "{e}");
+    let e =
+        err("servo = { stress = 1e5, area_of = { walls = [[0, 2], [4, 5]] }, max_speed = 0.1 }");
+    assert!(e.contains("must face each other"), "{e}");
+    let e = err("servo = { stress = 1e5, max_speed = 0.1 }");
+    assert!(e.contains("walls.servo.area") && e.contains("area_of"), "{e}");
+    let e = err("servo = { stress = 1e5, area_of = { walls = [[2, 3]] }, max_speed = 0.1 }");
+    assert!(e.contains("walls.servo.area_of.walls"), "{e}");
+    let e = err("servo = { stress = 1e5, area_of = { membrane = \"tube\", platens = [0, 1] }, max_speed = 0.1 }");
+    assert!(e.contains("walls.servo.area_of.membrane"), "{e}");
 }
