@@ -8,7 +8,7 @@ numpy arrays. Lengths in m, times in s, forces in N, energies in J.
 
 import os
 import pathlib
-from typing import Any, Callable, Iterable, Mapping, Optional, Sequence, Union
+from typing import Any, Callable, Dict, Iterable, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -111,6 +111,27 @@ class Simulation:
         """Velocity of wall `wall` (its index in the scene), m/s."""
     def impose_velocity(self, particles: Sequence[int], velocity: _Vec3) -> None:
         """Imposes a velocity (m/s) on `particles`; the supports' work is `boundary_work`."""
+    def set_wall_servo(
+        self,
+        wall: int,
+        stress: float,
+        area: float,
+        max_speed: float,
+        gain: Optional[float] = None,
+    ) -> None:
+        """Wall `wall` holds the normal stress `stress` (Pa) over `area` (m²) by a servo."""
+    def add_pressure(
+        self,
+        structure: str,
+        pressure: float,
+        flip: bool = False,
+        ramp: Optional[Tuple[float, float]] = None,
+    ) -> None:
+        """A pressure (Pa) on every PFacet of a structure; `flip=True` pushes inward."""
+    def clear_pressures(self) -> None:
+        """Removes every pressure."""
+    def pressures(self) -> List[Dict[str, Any]]:
+        """The pressures: pfacets, pressure, flip, ramp, current (Pa now)."""
     def add_load(
         self,
         *,

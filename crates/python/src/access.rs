@@ -202,6 +202,17 @@ pub(crate) enum Change {
     WallVelocity(u32, Vec3),
     /// Imposed velocity of particles (m/s): their translations are blocked and driven.
     ImposedVelocity(Vec<u32>, Vec3),
+    /// A wall's control (a servo, or back to its velocity).
+    WallControl(u32, flexdem_integrate::WallControl),
+    /// A pressure on the PFacets of a structure, by name.
+    AddPressure {
+        /// The structure's name.
+        structure: String,
+        /// The pressure load (its PFacets filled from the structure).
+        pressure: flexdem_integrate::Pressure,
+    },
+    /// No pressure any more.
+    ClearPressures,
 }
 
 /// Applies `change` to `sim`; the engine's message when it refuses it.
@@ -211,6 +222,23 @@ pub(crate) fn apply(sim: &mut Simulation, change: Change) -> Result<(), String> 
         Change::Gravity(g) => sim.set_gravity(g),
         Change::WallVelocity(w, v) => sim.set_wall_velocity(w, v),
         Change::ImposedVelocity(particles, v) => sim.impose_velocity(particles, v),
+        Change::WallControl(w, control) => sim.set_wall_control(w, control),
+        Change::AddPressure { structure, mut pressure } => {
+            let model = sim.model();
+            let Some(id) = model.structure_by_name(&structure) else {
+                let known: Vec<&str> = model.structures.iter().map(|s| s.name.as_str()).collect();
+                return Err(format!(
+                    "unknown structure `{structure}`; the structures are: {}",
+                    known.join(", ")
+                ));
+            };
+            pressure.pfacets = model.structures[id as usize].pfacets.clone().collect();
+            if pressure.pfacets.is_empty() {
+                return Err(format!("structure `{structure}` has no PFacets to press on"));
+            }
+            sim.add_pressure(pressure)
+        }
+        Change::ClearPressures => sim.set_pressures(Vec::new()),
     }
     .map_err(|e| e.to_string())
 }

@@ -454,6 +454,81 @@ impl PySimulation {
         self.change(access::Change::WallVelocity(wall, velocity.into()))
     }
 
+    /// Makes wall `wall` a servo that holds the normal stress `stress` (Pa, compression) over
+    /// `area` (m²), moving at most at `max_speed` (m/s), with the gain `gain` (m/s per N;
+    /// None: automatic, 0.5/(K·dt)); `set_wall_velocity` puts it back under a constant
+    /// velocity. Its work enters the energy balance as `boundary_work`.
+    #[pyo3(signature = (wall, stress, area, max_speed, gain=None))]
+    fn set_wall_servo(
+        &self,
+        wall: u32,
+        stress: f64,
+        area: f64,
+        max_speed: f64,
+        gain: Option<f64>,
+    ) -> PyResult<()> {
+        let servo = flexdem_integrate::StressControl {
+            target: stress,
+            area,
+            gain,
+            max_speed,
+            section: None,
+        };
+        self.change(access::Change::WallControl(
+            wall,
+            flexdem_integrate::WallControl::Stress(servo),
+        ))
+    }
+
+    /// Adds a pressure `pressure` (Pa) on every PFacet of the structure named `structure`: a
+    /// follower force p·area·n on each, positive along the PFacets' normals (out of a tube or
+    /// a shell), against them with `flip=True` (a confining pressure); `ramp=(start,
+    /// duration)` grows it linearly in simulated time. Its work enters `load_work`.
+    #[pyo3(signature = (structure, pressure, flip=false, ramp=None))]
+    fn add_pressure(
+        &self,
+        structure: String,
+        pressure: f64,
+        flip: bool,
+        ramp: Option<(f64, f64)>,
+    ) -> PyResult<()> {
+        let ramp = match ramp {
+            Some((start, duration)) => flexdem_integrate::Ramp::Linear { start, duration },
+            None => flexdem_integrate::Ramp::Constant,
+        };
+        let pressure = flexdem_integrate::Pressure { pfacets: Vec::new(), pressure, flip, ramp };
+        self.change(access::Change::AddPressure { structure, pressure })
+    }
+
+    /// Removes every pressure.
+    fn clear_pressures(&self) -> PyResult<()> {
+        self.change(access::Change::ClearPressures)
+    }
+
+    /// The pressures acting, as dicts: `pfacets` (int array), `pressure` (Pa), `flip`,
+    /// `ramp` (`(start, duration)` or None) and `current` (Pa, the ramp applied now).
+    fn pressures<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
+        let guard = self.lock();
+        let sim = guard.run.sim();
+        let list = PyList::empty(py);
+        for p in sim.pressures() {
+            let d = PyDict::new(py);
+            let ids: Vec<i64> = p.pfacets.iter().map(|&f| i64::from(f)).collect();
+            d.set_item("pfacets", crate::arrays::column(py, ids))?;
+            d.set_item("pressure", p.pressure)?;
+            d.set_item("flip", p.flip)?;
+            match p.ramp {
+                flexdem_integrate::Ramp::Linear { start, duration } => {
+                    d.set_item("ramp", (start, duration))?
+                }
+                flexdem_integrate::Ramp::Constant => d.set_item("ramp", py.None())?,
+            }
+            d.set_item("current", p.pressure * p.ramp.factor(sim.time()))?;
+            list.append(d)?;
+        }
+        Ok(list)
+    }
+
     /// Imposes the velocity `[vx, vy, vz]` (m/s) on `particles` (their translations are
     /// driven; the supports' work enters the energy balance as `boundary_work`).
     fn impose_velocity(&self, particles: Vec<u32>, velocity: [f64; 3]) -> PyResult<()> {

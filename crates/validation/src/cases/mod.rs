@@ -5,6 +5,7 @@ pub mod chung_ooi;
 pub mod coverage;
 pub mod impact;
 pub mod structural;
+pub mod triaxial;
 pub mod yade_force_splits;
 pub mod yade_side_by_side;
 
@@ -93,6 +94,12 @@ pub fn cases() -> Vec<Case> {
             title: "Paper §7 impacts run to 1 s: energy and self-contact through the rebound",
             in_quick_subset: false,
             run: impact::impact_long,
+        },
+        Case {
+            id: "triaxial",
+            title: "Drained triaxial tests: a PFacet membrane and rigid walls",
+            in_quick_subset: false,
+            run: triaxial::run,
         },
     ]
 }
