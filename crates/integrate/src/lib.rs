@@ -32,13 +32,13 @@ pub use error::SimulationError;
 pub use integrator::{kinetic_energy, leapfrog_step, StepWork};
 pub use links::{LinkEvents, LinkUpdate, Links};
 pub use measures::{
-    deviator_stress, love_weber_stress, mean_stress, membrane_sample_volume, solid_fraction,
-    wall_gap, wall_normal_stress,
+    deviator_stress, love_weber_stress, mean_stress, membrane_sample_volume, normal_force,
+    solid_fraction, wall_gap, wall_normal_stress,
 };
 pub use pipeline::ForceHook;
 pub use pressure::{add_pressure_forces, pressure_node_force, Pressure};
 pub use region::Region;
-pub use servo::{normal_force, SampleSection, StressControl, WallControl, SERVO_RELAXATION};
+pub use servo::{SampleSection, StressControl, WallControl, SERVO_RELAXATION};
 pub use settings::{Load, Ramp, Settings, TimeStep, DEFAULT_ENERGY_TOLERANCE};
 pub use simulation::{Control, Simulation};
 pub use state::{Clock, State};

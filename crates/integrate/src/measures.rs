@@ -5,12 +5,17 @@
 
 use crate::contacts::Contact;
 use crate::region::Region;
-use crate::servo::normal_force;
 use flexdem_elements::virtual_sphere::{Feature, Site};
 use flexdem_elements::{Model, ParticleKind, Particles, Wall};
 use flexdem_geom::{Real, Vec3};
 use nalgebra::Matrix3;
 use std::f64::consts::PI;
+
+/// The normal force `F_n = −F·n` (N, ≥ 0 in compression) of the force `force` the bodies put
+/// on `wall`.
+pub fn normal_force(wall: &Wall, force: &Vec3) -> Real {
+    -force.dot(&wall.normal)
+}
 
 /// The normal stress on `wall` (Pa, compression positive) of the force `force` the bodies put
 /// on it, over the area `area` (m²): `−F·n / A`.

@@ -24,9 +24,9 @@
 //! per step.
 
 use crate::contacts::Contact;
+use crate::measures::{membrane_sample_volume, normal_force, wall_gap};
 use crate::SimulationError;
 use flexdem_elements::virtual_sphere::Feature;
-use flexdem_elements::Wall;
 use flexdem_geom::{Real, Vec3};
 use serde::{Deserialize, Serialize};
 
@@ -150,11 +150,11 @@ impl SampleSection {
     pub fn area(&self, model: &flexdem_elements::Model) -> Result<Real, String> {
         match *self {
             SampleSection::Membrane { structure, platens } => {
-                let height = crate::wall_gap(model, platens[0], platens[1])?;
-                Ok(crate::membrane_sample_volume(model, structure, platens)? / height)
+                let height = wall_gap(model, platens[0], platens[1])?;
+                Ok(membrane_sample_volume(model, structure, platens)? / height)
             }
             SampleSection::Rectangle { a, b } => {
-                Ok(crate::wall_gap(model, a[0], a[1])? * crate::wall_gap(model, b[0], b[1])?)
+                Ok(wall_gap(model, a[0], a[1])? * wall_gap(model, b[0], b[1])?)
             }
         }
     }
@@ -260,11 +260,6 @@ impl WallLoads {
     }
 }
 
-/// The normal force `F_n = −F·n` (N, ≥ 0 in compression) of the force `force` on `wall`.
-pub fn normal_force(wall: &Wall, force: &Vec3) -> Real {
-    -force.dot(&wall.normal)
-}
-
 /// Sets the normal velocity of every stress-controlled wall for the next step (from `time`,
 /// `dt` long) from the loads on it (the tangential part of its velocity is kept); a wall
 /// whose servo has ended takes its later velocity. Returns whether a wall is steered.
@@ -300,6 +295,7 @@ pub(crate) fn steer_walls(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use flexdem_elements::Wall;
 
     fn servo(gain: Option<Real>) -> StressControl {
         StressControl { target: 1e5, area: 0.01, gain, max_speed: 0.1, section: None }

@@ -3,7 +3,7 @@
 use crate::builder::Builder;
 use crate::error::{unknown_name, SceneError};
 use crate::output_measures::MEASURES;
-use crate::schema::{OutputSpec, SeriesSpecToml, S};
+use crate::schema::{OutputSpec, SelectSpec, SeriesSpecToml, S};
 use flexdem_elements::{structure_volume, VolumeError};
 use flexdem_output::{OutputSettings, Quantity, SeriesSpec};
 
@@ -156,6 +156,25 @@ impl Builder<'_> {
 }
 
 impl Builder<'_> {
+    /// The structure name of `of = { structure = "name" }`, which must have no other key
+    /// (`usage` says what is expected otherwise).
+    pub(crate) fn structure_only<'s>(
+        &self,
+        of: &'s S<SelectSpec>,
+        usage: &str,
+    ) -> Result<&'s S<String>, SceneError> {
+        let sel = of.get_ref();
+        let others = sel.spheres.is_some()
+            || sel.ids.is_some()
+            || sel.side.is_some()
+            || sel.region.is_some()
+            || sel.plane.is_some();
+        match &sel.structure {
+            Some(name) if !others => Ok(name),
+            _ => Err(self.ctx.at(of.span(), "output.series.of", usage)),
+        }
+    }
+
     /// `quantity = "volume"`: the volume enclosed by the PFacets of the structure named in
     /// `of = { structure = "name" }`, its open ends closed by the `[[walls]]` of `walls`
     /// (indices), checked now on the scene as built.
@@ -167,44 +186,12 @@ impl Builder<'_> {
         let Some(of) = &sp.of else {
             return Err(ctx.missing(s.span(), "output.series.of", usage));
         };
-        let sel = of.get_ref();
-        let others = sel.spheres.is_some()
-            || sel.ids.is_some()
-            || sel.side.is_some()
-            || sel.region.is_some()
-            || sel.plane.is_some();
-        let name = match &sel.structure {
-            Some(name) if !others => name,
-            _ => return Err(ctx.at(of.span(), "output.series.of", usage)),
-        };
+        let name = self.structure_only(of, usage)?;
         let structure = self.named_structure(name, "output.series.of.structure")?.id;
-        let count = self.model.walls.len();
-        let mut walls: Vec<u32> = Vec::new();
-        if let Some(list) = &sp.walls {
-            for &w in list.get_ref() {
-                let id = match u32::try_from(w) {
-                    Ok(id) if (id as usize) < count => id,
-                    _ => {
-                        return Err(ctx.at(
-                            list.span(),
-                            "output.series.walls",
-                            format!(
-                                "wall {w} does not exist: the scene has {count} [[walls]] \
-                                 (indices 0..{count}, in file order)"
-                            ),
-                        ))
-                    }
-                };
-                if walls.contains(&id) {
-                    return Err(ctx.at(
-                        list.span(),
-                        "output.series.walls",
-                        format!("wall {id} is given twice"),
-                    ));
-                }
-                walls.push(id);
-            }
-        }
+        let walls = match &sp.walls {
+            Some(list) => self.wall_indices(list, "output.series.walls", None, "")?,
+            None => Vec::new(),
+        };
         let planes: Vec<_> = walls.iter().map(|&w| self.model.walls[w as usize].plane()).collect();
         if let Err(e) = structure_volume(&self.model, structure, &planes) {
             let hint = match e {

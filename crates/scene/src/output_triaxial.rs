@@ -9,12 +9,13 @@ use flexdem_output::triaxial::{triaxial_geometry, Lateral, TriaxialSpec};
 use flexdem_output::Quantity;
 
 impl Builder<'_> {
-    /// Wall indices of `list` (at least one each, distinct, existing), `count` of them.
-    fn wall_indices(
+    /// Wall indices of `list` (distinct, existing), exactly `count` of them when given (`what`
+    /// says what they are then).
+    pub(crate) fn wall_indices(
         &self,
         list: &S<Vec<i64>>,
         key: &str,
-        count: usize,
+        count: Option<usize>,
         what: &str,
     ) -> Result<Vec<u32>, SceneError> {
         let ctx = self.ctx;
@@ -39,14 +40,14 @@ impl Builder<'_> {
             }
             ids.push(id);
         }
-        if ids.len() != count {
-            return Err(ctx.at(
+        match count {
+            Some(count) if ids.len() != count => Err(ctx.at(
                 list.span(),
                 key,
                 format!("has {} walls: expected {count}, {what}", ids.len()),
-            ));
+            )),
+            _ => Ok(ids),
         }
-        Ok(ids)
     }
 
     /// `quantity = "triaxial"`.
@@ -62,23 +63,14 @@ impl Builder<'_> {
                 &format!("quantity = \"triaxial\" needs {platens_usage}"),
             )
         })?;
-        let platens = self.wall_indices(list, "output.series.walls", 2, platens_usage)?;
+        let platens = self.wall_indices(list, "output.series.walls", Some(2), platens_usage)?;
         let lateral = match (&sp.of, &sp.lateral_walls) {
             (Some(of), None) => {
-                let sel = of.get_ref();
-                let others = sel.spheres.is_some()
-                    || sel.ids.is_some()
-                    || sel.side.is_some()
-                    || sel.region.is_some()
-                    || sel.plane.is_some();
-                let Some(name) = sel.structure.as_ref().filter(|_| !others) else {
-                    return Err(ctx.at(
-                        of.span(),
-                        "output.series.of",
-                        "quantity = \"triaxial\" takes `of = { structure = \"name\" }`, the \
-                         membrane, and no other selection key",
-                    ));
-                };
+                let name = self.structure_only(
+                    of,
+                    "quantity = \"triaxial\" takes `of = { structure = \"name\" }`, the \
+                     membrane, and no other selection key",
+                )?;
                 let structure = self.named_structure(name, "output.series.of.structure")?.id;
                 Lateral::Membrane { structure }
             }
@@ -86,7 +78,7 @@ impl Builder<'_> {
                 let ids = self.wall_indices(
                     list,
                     "output.series.lateral_walls",
-                    4,
+                    Some(4),
                     "two pairs of facing walls [a, a', b, b']",
                 )?;
                 Lateral::Walls([ids[0], ids[1], ids[2], ids[3]])

@@ -225,7 +225,6 @@ fn bad_volume_series_name_the_key_and_line() {
     let m = error(&entry("of = { structure = \"net\" }\n", ""), 8, "output.series.of");
     assert!(m.contains("has no PFacets"), "{m}");
     let energy = series("\n[[output.series]]\nname = \"e\"\nquantity = \"energy\"\nwalls = [0]\n");
-    assert!(
-        error(&energy, 8, "output.series.walls").contains("applies to quantity = \"volume\" only")
-    );
+    assert!(error(&energy, 8, "output.series.walls")
+        .contains("applies to quantity = \"volume\" or \"triaxial\" only"));
 }
