@@ -145,6 +145,14 @@ fn draw_radii(
     let solid: Real = radii.iter().map(|r| 4.0 / 3.0 * PI * r.powi(3)).sum();
     let scale = (target / solid).cbrt();
     radii.iter_mut().for_each(|r| *r *= scale);
+    if let Some(&bad) = radii.iter().find(|r| !(r.is_finite() && **r > 0.0)) {
+        return Err(PackingError::BadParameter {
+            what: "scaled radius",
+            value: bad,
+            expected: "a finite radius > 0: the radius range is too small or too large to \
+                       compute with (its cube under- or overflows)",
+        });
+    }
     Ok(radii)
 }
 
@@ -200,7 +208,11 @@ impl Relaxation {
     /// overlap, pair or boundary.
     fn forces(&mut self, region: &Region, centres: &[Vec3], radii: &[Real]) -> Real {
         let r_max = radii.iter().copied().fold(0.0, Real::max);
-        let cell = 2.0 * r_max;
+        // cells of one diameter, but never more than about 4 per sphere (a grid of tiny
+        // spheres in a large region would not fit in memory)
+        let extent = self.hi - self.lo;
+        let per_cell = (extent.x * extent.y * extent.z / (4.0 * radii.len() as Real)).cbrt();
+        let cell = (2.0 * r_max).max(per_cell);
         let dims =
             [0, 1, 2].map(|k| ((self.hi[k] - self.lo[k]) / cell).floor().max(0.0) as usize + 1);
         self.bucket(centres, cell, dims);

@@ -149,6 +149,20 @@ radius = 0.01
     assert!(e.contains("spheres.cylinder.axis"), "{e}");
     let e = parse(&format!("{base}solid_fraction = 0.6\nfile = \"a.csv\"\n")).unwrap_err();
     assert!(e.contains("does not apply to kind = \"dense\""), "{e}");
+    // radii whose cube underflows: an error, not an overflow (found by the fuzzer)
+    let e = parse(
+        &format!(
+        "{base}solid_fraction = 0.6\nbox = {{ min = [0, 0, 0], max = [1, 1, 1] }}\ncount = 10\n"
+    )
+        .replace("radius = 0.01", "radius_range = [6e-300, 1.2e-299]"),
+    )
+    .unwrap_err();
+    assert!(e.contains("scaled radius"), "{e}");
+    // a vanishing solid fraction: tiny radii in a grid that must still fit (an overflow of
+    // the cell count, found by the fuzzer); built or refused, never a panic
+    let _ = parse(&format!(
+        "{base}solid_fraction = 0.6e-300\ncylinder = {{ start = [0, 0, 0], axis = [0, 0, 1], radius = 0.05, length = 0.2 }}\ncount = 5000\n"
+    ));
     // an open structure cannot hold spheres
     let open = r#"
 [[structures]]
