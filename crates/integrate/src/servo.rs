@@ -271,18 +271,20 @@ pub(crate) fn steer_walls(
     dt: Real,
 ) -> bool {
     let mut steered = false;
-    // the servos' areas from the walls where they are now, before any velocity changes
-    let servos: Vec<Option<StressControl>> =
-        controls.iter().map(|c| c.servo_at(time).map(|s| s.with_current_area(model))).collect();
-    for (w, (wall, control)) in model.walls.iter_mut().zip(controls).enumerate() {
+    for (w, control) in controls.iter().enumerate() {
         if let WallControl::StressUntil { until, then, .. } = control {
             if time >= *until {
+                let wall = &mut model.walls[w];
                 steered |= wall.velocity != *then;
                 wall.velocity = *then;
                 continue;
             }
         }
-        let Some(servo) = servos[w] else { continue };
+        // the area from where the walls are (steering changes velocities, not positions)
+        let Some(servo) = control.servo_at(time).map(|s| s.with_current_area(model)) else {
+            continue;
+        };
+        let wall = &mut model.walls[w];
         let f_n = normal_force(wall, &loads.force[w]);
         let speed = servo.normal_speed(f_n, loads.stiffness[w], dt);
         let n = wall.normal;
