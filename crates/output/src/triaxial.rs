@@ -164,7 +164,7 @@ pub fn triaxial_state(sim: &Simulation, spec: &TriaxialSpec) -> Result<TriaxialS
         (Lateral::Membrane { structure }, _) => {
             (volume / height, membrane_pressure(sim, *structure))
         }
-        (Lateral::Walls(_), None) => unreachable!("rigid walls have spans"),
+        (Lateral::Walls(_), None) => return Err("rigid walls without their spans".into()),
     };
     Ok(TriaxialState {
         height,

@@ -303,9 +303,13 @@ impl Relaxation {
                 alpha = ALPHA_START;
                 positive = 0;
             }
-            for ((c, v), f) in centres.iter_mut().zip(v.iter_mut()).zip(&self.moves) {
+            for (((c, v), f), r) in centres.iter_mut().zip(v.iter_mut()).zip(&self.moves).zip(radii)
+            {
                 *v += f * dt;
-                *c += *v * dt;
+                let step = *v * dt;
+                let limit = region.largest_step(*r);
+                let length = step.norm();
+                *c += if length > limit { step * (limit / length) } else { step };
             }
         }
         (self.forces(region, centres, radii), max_iterations)

@@ -1,7 +1,7 @@
 //! Regions a packing fills: a box, a cylinder, or the inside of a closed triangle surface,
 //! each answering where a sphere must move to lie wholly inside.
 
-use flexdem_geom::{project_point_triangle, Real, Vec3};
+use flexdem_geom::{closed_surface_volume, project_point_triangle, Real, Vec3};
 use std::f64::consts::PI;
 
 /// A region of space that spheres fill.
@@ -58,7 +58,22 @@ impl Region {
 
     /// Whether a sphere of radius `r` centred at `c` lies wholly inside (to `slack`).
     pub fn holds(&self, c: &Vec3, r: Real, slack: Real) -> bool {
-        self.push_inside(c, r).norm() <= slack
+        let inside = match self {
+            Region::Surface(s) => s.contains(c),
+            _ => true,
+        };
+        inside && self.push_inside(c, r).norm() <= slack
+    }
+
+    /// The largest move a sphere of radius `r` may make in one step of a packing so that the
+    /// region still sees it: a surface finds only the triangles within `r + inset` of a
+    /// centre, and a sphere moving further in one step could pass through it unseen (a box
+    /// and a cylinder clamp any centre, however far out).
+    pub fn largest_step(&self, r: Real) -> Real {
+        match self {
+            Region::Surface(_) => 0.25 * r,
+            _ => Real::INFINITY,
+        }
     }
 
     /// The displacement that brings a sphere of radius `r` centred at `c` wholly inside the
@@ -179,7 +194,7 @@ impl ClosedSurface {
         }
         let mut tris: Vec<[Vec3; 3]> =
             triangles.iter().map(|t| [vertices[t[0]], vertices[t[1]], vertices[t[2]]]).collect();
-        let volume: Real = tris.iter().map(|[a, b, c]| a.dot(&b.cross(c))).sum::<Real>() / 6.0;
+        let volume = closed_surface_volume(vertices, triangles);
         if !(volume.abs() > 0.0) {
             return Err(SurfaceError::Empty { volume });
         }
