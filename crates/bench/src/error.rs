@@ -45,11 +45,19 @@ pub enum BenchError {
         /// The model's error.
         source: ModelError,
     },
+    /// A scene file that cannot be read, parsed or built.
+    #[error("{}: {message}", path.display())]
+    SceneFile {
+        /// The file.
+        path: std::path::PathBuf,
+        /// What is wrong (the scene parser's message names the line).
+        message: String,
+    },
     /// The engine refused the model or failed during the run.
     #[error("{scene} (size {size}, {threads} threads): the simulation failed: {source}")]
     Simulation {
-        /// Scene name.
-        scene: &'static str,
+        /// Scene name (a built-in scene's, or a scene file's stem).
+        scene: String,
         /// Scene size.
         size: usize,
         /// Worker threads.

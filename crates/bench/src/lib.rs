@@ -6,7 +6,8 @@
 //!
 //! Scenes ([`SceneKind`]): the paper's tube impact (§7) with a fixed time step (the same
 //! scene runs in YADE: `bench/yade/tube_impact.py`); a PFacet membrane of about 10³–10⁶
-//! PFacets, edges pinned, under a layer of spheres; spheres falling in a box of walls.
+//! PFacets, edges pinned, under a layer of spheres; spheres falling in a box of walls; and
+//! any scene file ([`Case::File`]: the twins of other codes' inputs under `bench/`).
 //!
 //! Definitions:
 //! - elements = the bodies the engine handles: particles (structure nodes and free
@@ -20,12 +21,14 @@
 //! - checksum = FNV-1a of the bits of every particle's position, velocity, orientation and
 //!   angular velocity after the timed steps, and of the contact count.
 
+mod case;
 mod error;
 pub mod procfs;
 pub mod report;
 pub mod runner;
 pub mod scenes;
 
+pub use case::{Case, FILE_WARMUP_STEPS};
 pub use error::BenchError;
 pub use runner::{run_case, run_plan, state_checksum, BenchResult, Plan, PlanRow, StepChoice};
 pub use scenes::SceneKind;

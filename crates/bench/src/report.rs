@@ -44,8 +44,8 @@ pub fn table_row(row: &PlanRow) -> String {
     let r = &row.result;
     let pct = r.stage_percent();
     let cells = [
-        r.scene.name().to_string(),
-        r.size.to_string(),
+        r.case.name(),
+        r.case.size().to_string(),
         r.elements().to_string(),
         r.threads.to_string(),
         r.steps.to_string(),
@@ -99,8 +99,8 @@ pub fn csv_row(row: &PlanRow) -> String {
     let ms = r.stage_ms_per_step();
     let pct = r.stage_percent();
     let mut fields = vec![
-        r.scene.name().to_string(),
-        r.size.to_string(),
+        r.case.name(),
+        r.case.size().to_string(),
         r.elements().to_string(),
         r.particles.to_string(),
         r.connections.to_string(),

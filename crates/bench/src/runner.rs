@@ -3,10 +3,10 @@
 //! and a checksum of the final state.
 
 use crate::procfs::{cpu_time, resident_memory};
-use crate::{BenchError, SceneKind};
+use crate::{BenchError, Case, SceneKind};
 use flexdem_elements::Model;
 use flexdem_geom::Real;
-use flexdem_integrate::{Simulation, Timers};
+use flexdem_integrate::Timers;
 use std::time::{Duration, Instant};
 
 /// How many steps are timed.
@@ -44,10 +44,8 @@ impl StepChoice {
 /// One benchmark run's measurements.
 #[derive(Clone, Debug, PartialEq)]
 pub struct BenchResult {
-    /// The scene.
-    pub scene: SceneKind,
-    /// Its size parameter.
-    pub size: usize,
+    /// The scene (a built-in one at a size, or a file).
+    pub case: Case,
     /// Particles (structure nodes and free spheres).
     pub particles: usize,
     /// Connections (one beam link each).
@@ -76,7 +74,7 @@ pub struct BenchResult {
     /// Resident memory added by building the simulation and warming it up: `VmRSS` after
     /// the warm-up minus `VmRSS` before the build (None where /proc is missing).
     pub memory_bytes: Option<u64>,
-    /// A scene-specific final value, named (see [`SceneKind::probe`]).
+    /// A scene-specific final value, named (see [`Case::probe`]).
     pub probe: Option<(&'static str, Real)>,
     /// FNV-1a hash of the bits of every particle's position, velocity, orientation and
     /// angular velocity at the end, and of the contact count.
@@ -143,12 +141,11 @@ fn per_step_ms(d: Duration, steps: u64) -> Real {
     d.as_secs_f64() * 1e3 / steps.max(1) as Real
 }
 
-/// Builds `scene` at `size`, runs `warmup` steps, then the timed steps (`steps`, decided
+/// Builds `case`, runs `warmup` steps, then the timed steps (`steps`, decided
 /// from the warm-up if adaptive; the fewest without a warm-up), everything inside a rayon
 /// pool of `threads` threads (`pool.install(|| sim.run(n))`).
 pub fn run_case(
-    scene: SceneKind,
-    size: usize,
+    case: &Case,
     threads: usize,
     warmup: u64,
     steps: StepChoice,
@@ -163,11 +160,11 @@ pub fn run_case(
         .num_threads(threads)
         .build()
         .map_err(|e| BenchError::ThreadPool { threads, message: e.to_string() })?;
-    let failed = |source| BenchError::Simulation { scene: scene.name(), size, threads, source };
+    let failed =
+        |source| BenchError::Simulation { scene: case.name(), size: case.size(), threads, source };
     let rss_before = resident_memory();
     let start = Instant::now();
-    let (model, settings) = scene.build(size)?;
-    let mut sim = pool.install(|| Simulation::new(model, settings)).map_err(failed)?;
+    let mut sim = pool.install(|| case.simulation(threads))?;
     let build_time = start.elapsed();
     let start = Instant::now();
     pool.install(|| sim.run(warmup)).map_err(failed)?;
@@ -193,8 +190,7 @@ pub fn run_case(
     };
     let after = *sim.timers();
     Ok(BenchResult {
-        scene,
-        size,
+        case: case.clone(),
         particles: sim.model().particles.len(),
         connections: sim.model().connections.len(),
         pfacets: sim.model().pfacets.len(),
@@ -215,7 +211,7 @@ pub fn run_case(
         },
         contacts: sim.contacts().len(),
         memory_bytes,
-        probe: scene.probe(&sim),
+        probe: case.probe(&sim),
         checksum: state_checksum(sim.model(), sim.contacts().len()),
     })
 }
@@ -244,13 +240,13 @@ pub fn state_checksum(model: &Model, contacts: usize) -> u64 {
 /// A benchmark plan: which scenes at which sizes, with which thread counts and run lengths.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Plan {
-    /// (scene, size) pairs, run in this order.
-    pub cases: Vec<(SceneKind, usize)>,
+    /// The cases, run in this order.
+    pub cases: Vec<Case>,
     /// Thread counts, each run for every case (the first decides adaptive step counts).
     pub threads: Vec<usize>,
     /// Timed steps (None: the scene's fixed count, else [`Plan::adaptive`]).
     pub steps: Option<u64>,
-    /// Warm-up steps (None: the scene's [`SceneKind::warmup_steps`]).
+    /// Warm-up steps (None: the case's [`Case::warmup_steps`]).
     pub warmup: Option<u64>,
     /// Run length of scenes without a fixed count when `steps` is None.
     pub adaptive: StepChoice,
@@ -263,7 +259,7 @@ impl Plan {
         Plan {
             cases: scenes
                 .iter()
-                .flat_map(|&k| k.default_sizes().into_iter().map(move |s| (k, s)))
+                .flat_map(|&k| k.default_sizes().into_iter().map(move |s| Case::Scene(k, s)))
                 .collect(),
             threads: vec![1, 2],
             steps: None,
@@ -281,7 +277,7 @@ impl Plan {
         Plan {
             cases: scenes
                 .iter()
-                .flat_map(|&k| k.quick_sizes().into_iter().map(move |s| (k, s)))
+                .flat_map(|&k| k.quick_sizes().into_iter().map(move |s| Case::Scene(k, s)))
                 .collect(),
             threads: vec![1, 2],
             steps: Some(5),
@@ -305,15 +301,15 @@ pub struct PlanRow {
 /// checksum is compared with the first's.
 pub fn run_plan(plan: &Plan, mut report: impl FnMut(&PlanRow)) -> Result<Vec<PlanRow>, BenchError> {
     let mut rows = Vec::new();
-    for &(scene, size) in &plan.cases {
-        let warmup = plan.warmup.unwrap_or(scene.warmup_steps());
-        let mut choice = match (plan.steps, scene.fixed_steps()) {
+    for case in &plan.cases {
+        let warmup = plan.warmup.unwrap_or(case.warmup_steps());
+        let mut choice = match (plan.steps, case.fixed_steps()) {
             (Some(n), _) | (None, Some(n)) => StepChoice::Fixed(n),
             (None, None) => plan.adaptive,
         };
         let mut first: Option<u64> = None;
         for &threads in &plan.threads {
-            let result = run_case(scene, size, threads, warmup, choice)?;
+            let result = run_case(case, threads, warmup, choice)?;
             choice = StepChoice::Fixed(result.steps);
             let same_as_first = first.map(|c| c == result.checksum);
             first.get_or_insert(result.checksum);

@@ -17,8 +17,9 @@ fn every_scene_builds_small_and_runs_a_few_steps() {
     for (scene, size) in
         [(SceneKind::TubeImpact, 640), (SceneKind::Membrane, 200), (SceneKind::Packing, 90)]
     {
-        let r = run_case(scene, size, 1, 2, StepChoice::Fixed(3)).unwrap();
-        assert_eq!((r.scene, r.size, r.threads, r.warmup_steps, r.steps), (scene, size, 1, 2, 3));
+        let case = Case::Scene(scene, size);
+        let r = run_case(&case, 1, 2, StepChoice::Fixed(3)).unwrap();
+        assert_eq!((&r.case, r.threads, r.warmup_steps, r.steps), (&case, 1, 2, 3));
         assert!(r.elements() > 0 && r.wall > Duration::ZERO, "{r:?}");
         assert!(r.ms_per_step() > 0.0 && r.ns_per_element_step() > 0.0 && r.dt > 0.0);
         let pct = r.stage_percent();
@@ -122,12 +123,15 @@ fn tube_impact_scene() -> (flexdem_elements::Model, flexdem_integrate::Settings)
 
 #[test]
 fn small_membrane_gives_the_same_state_with_one_and_two_threads() {
-    let one = run_case(SceneKind::Membrane, 300, 1, 5, StepChoice::Fixed(20)).unwrap();
-    let two = run_case(SceneKind::Membrane, 300, 2, 5, StepChoice::Fixed(20)).unwrap();
+    let one =
+        run_case(&Case::Scene(SceneKind::Membrane, 300), 1, 5, StepChoice::Fixed(20)).unwrap();
+    let two =
+        run_case(&Case::Scene(SceneKind::Membrane, 300), 2, 5, StepChoice::Fixed(20)).unwrap();
     assert!(one.contacts > 0);
     assert_eq!(one.checksum, two.checksum);
     // ... and the checksum does see a change of state.
-    let longer = run_case(SceneKind::Membrane, 300, 1, 5, StepChoice::Fixed(21)).unwrap();
+    let longer =
+        run_case(&Case::Scene(SceneKind::Membrane, 300), 1, 5, StepChoice::Fixed(21)).unwrap();
     assert_ne!(one.checksum, longer.checksum);
 }
 
@@ -162,7 +166,7 @@ fn step_choice_clamps_the_adaptive_count() {
     assert_eq!(c.steps(Duration::MAX), 10);
     assert_eq!(StepChoice::Fixed(7).steps(Duration::from_secs(5)), 7);
     let adaptive = StepChoice::Adaptive { target: Duration::from_secs(100), min: 3, max: 1000 };
-    assert_eq!(run_case(SceneKind::Packing, 100, 1, 0, adaptive).unwrap().steps, 3);
+    assert_eq!(run_case(&Case::Scene(SceneKind::Packing, 100), 1, 0, adaptive).unwrap().steps, 3);
 }
 
 #[test]
@@ -173,6 +177,6 @@ fn bad_input_is_an_error_naming_it() {
     assert!(msg(SceneKind::Packing.build(0).unwrap_err()).contains("packing: size 0"));
     assert!(msg(SceneKind::parse("tube").unwrap_err()).contains("\"tube\""));
     assert_eq!(SceneKind::parse("membrane").unwrap(), SceneKind::Membrane);
-    assert!(run_case(SceneKind::Packing, 100, 0, 1, StepChoice::Fixed(1)).is_err());
-    assert!(run_case(SceneKind::Packing, 100, 1, 1, StepChoice::Fixed(0)).is_err());
+    assert!(run_case(&Case::Scene(SceneKind::Packing, 100), 0, 1, StepChoice::Fixed(1)).is_err());
+    assert!(run_case(&Case::Scene(SceneKind::Packing, 100), 1, 1, StepChoice::Fixed(0)).is_err());
 }

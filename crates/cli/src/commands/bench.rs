@@ -5,7 +5,7 @@
 use crate::error::{CliError, Outcome};
 use clap::Args;
 use flexdem_bench::report::{csv, table_header, table_row};
-use flexdem_bench::{run_plan, Plan, SceneKind};
+use flexdem_bench::{run_plan, Case, Plan, SceneKind};
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -30,9 +30,15 @@ the warm-up minus VmRSS before the build); vs 1st thr: whether the final state i
 bit-identical to the first thread count's (the command fails if one is DIFFERENT).
 The CSV also has each stage's ms/step, dt, build time and the state checksum.")]
 pub struct BenchArgs {
-    /// Scenes to run: tube_impact, membrane, packing or all (comma-separated).
-    #[arg(long, value_name = "NAME", value_delimiter = ',', default_value = "all")]
+    /// Scenes to run: tube_impact, membrane, packing or all (comma-separated). Default: all,
+    /// or none when scene files are given.
+    #[arg(long, value_name = "NAME", value_delimiter = ',')]
     pub scene: Vec<String>,
+    /// Scene files (TOML, as for `flexdem run`) to time as they are, after the built-in
+    /// scenes; repeatable. Each runs its warm-up (default 20 steps) and the timed steps with
+    /// its own settings and time step, output off.
+    #[arg(long, value_name = "FILE.toml")]
+    pub scene_file: Vec<PathBuf>,
     /// Sizes of the membrane (PFacets) and packing (spheres), comma-separated (default:
     /// membrane 1000,10000,100000,1000000; packing 1000,10000,100000). The tube impact has
     /// one size (640 PFacets) and ignores this.
@@ -115,7 +121,12 @@ pub fn bench(args: &BenchArgs) -> Result<Outcome, CliError> {
 /// The plan of `args`: scenes, sizes, threads, steps.
 fn plan(args: &BenchArgs) -> Result<Plan, CliError> {
     let mut scenes = Vec::new();
-    for name in &args.scene {
+    let all = [String::from("all")];
+    let names: &[String] = match (args.scene.is_empty(), args.scene_file.is_empty()) {
+        (true, true) => &all,
+        _ => &args.scene,
+    };
+    for name in names {
         let name = name.trim();
         let more = if name == "all" {
             SceneKind::ALL.to_vec()
@@ -146,12 +157,20 @@ fn plan(args: &BenchArgs) -> Result<Plan, CliError> {
                     _ => sizes.clone(),
                 }
                 .into_iter()
-                .map(move |s| (k, s))
+                .map(move |s| Case::Scene(k, s))
             })
             .collect();
-        for &(k, s) in &plan.cases {
-            k.check_size(s).map_err(|e| CliError::Input(format!("--sizes: {e}")))?;
+        for case in &plan.cases {
+            if let Case::Scene(k, s) = case {
+                k.check_size(*s).map_err(|e| CliError::Input(format!("--sizes: {e}")))?;
+            }
         }
+    }
+    for path in &args.scene_file {
+        if !path.is_file() {
+            return Err(CliError::Input(format!("--scene-file: {} is not a file", path.display())));
+        }
+        plan.cases.push(Case::File(path.clone()));
     }
     plan.threads = args
         .threads
