@@ -56,10 +56,19 @@ pub struct Collider {
     pub(crate) connection_element: Vec<u32>,
     /// Collidable index of each PFacet.
     pub(crate) pfacet_element: Vec<u32>,
-    /// Candidate pairs `(i, j)`, `i < j`, indices into `elements`, sorted.
+    /// Candidate pairs `(i, j)`, `i < j`, indices into `elements`, sorted, but for the pairs
+    /// of two free spheres, which are in `sphere_pairs`.
     pub pairs: Vec<(u32, u32)>,
-    /// Candidate (wall, particle) pairs, sorted.
+    /// Candidate pairs of free spheres `(i, j)`, particle ids, `i < j`, sorted: those whose
+    /// centres are within `r_i + r_j + m_i + m_j` (radii plus margins), the only ones that can
+    /// touch before the next build (their boxes may overlap farther apart, at the corners).
+    pub sphere_pairs: Vec<(u32, u32)>,
+    /// Candidate (wall, particle) pairs of the particles that are not free spheres, sorted.
     pub wall_pairs: Vec<(u32, u32)>,
+    /// Candidate (wall, particle) pairs of the free spheres, sorted.
+    pub sphere_wall_pairs: Vec<(u32, u32)>,
+    /// Whether each element is in one of `pairs` (the others need no hull at a step).
+    pub(crate) paired: Vec<bool>,
     /// Margin of each element (m): its boxes are grown by it (half its Verlet distance).
     pub margins: Vec<Real>,
     /// How far each particle may move before a rebuild (m): the smallest margin of the
@@ -212,13 +221,19 @@ impl Collider {
                 && !Self::nodes(model, a).iter().any(|n| Self::nodes(model, b).contains(n))
         };
         self.broad.overlapping_pairs(&self.boxes, accept, &mut self.pairs);
+        self.split_sphere_pairs(model);
 
         self.wall_pairs.clear();
+        self.sphere_wall_pairs.clear();
         for (w, wall) in model.walls.iter().enumerate() {
             for i in 0..p.len() {
                 let gap = (p.pos[i] - wall.point).dot(&wall.normal) - p.radius[i];
                 if gap <= 2.0 * self.limits[i] && (wall.mask & p.mask[i]) != 0 {
-                    self.wall_pairs.push((w as u32, i as u32));
+                    if self.sphere_element[i] == NONE {
+                        self.wall_pairs.push((w as u32, i as u32));
+                    } else {
+                        self.sphere_wall_pairs.push((w as u32, i as u32));
+                    }
                 }
             }
         }
@@ -227,5 +242,36 @@ impl Collider {
         self.wall_reference.clear();
         self.wall_reference.extend(model.walls.iter().map(|w| w.point));
         self.builds += 1;
+    }
+
+    /// Moves the pairs of two free spheres from `pairs` to `sphere_pairs` (as particle ids),
+    /// keeping those whose centres are within the sum of their radii and margins. Free
+    /// spheres come first among the elements, in particle order, so both lists stay sorted.
+    fn split_sphere_pairs(&mut self, model: &Model) {
+        let p = &model.particles;
+        let (elements, margins) = (&self.elements, &self.margins);
+        let spheres = &mut self.sphere_pairs;
+        spheres.clear();
+        self.pairs.retain(|&(a, b)| {
+            let (Element::Particle(i), Element::Particle(j)) =
+                (elements[a as usize], elements[b as usize])
+            else {
+                return true;
+            };
+            let reach = p.radius[i as usize]
+                + p.radius[j as usize]
+                + margins[a as usize]
+                + margins[b as usize];
+            if (p.pos[j as usize] - p.pos[i as usize]).norm_squared() <= reach * reach {
+                spheres.push((i, j));
+            }
+            false
+        });
+        self.paired.clear();
+        self.paired.resize(elements.len(), false);
+        for &(a, b) in &self.pairs {
+            self.paired[a as usize] = true;
+            self.paired[b as usize] = true;
+        }
     }
 }

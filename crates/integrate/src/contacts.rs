@@ -5,78 +5,30 @@
 //! node loads summed in contact order (independent of the thread count).
 
 use crate::collider::{Collider, NONE};
+pub(crate) use crate::contact::BirthReport;
+pub use crate::contact::Contact;
+use crate::contact::{birth_jump, geometry, material, new_contact, owner, wall_touching, Touching};
+use crate::neighbours::{merged, NeighbourList, PairScratch, Pick};
 use crate::prefilter::{hull, proven_apart, Hull};
-use flexdem_contact::{
-    update_frictional_contact, ContactForces, ContactKinematics, FrictionalContact,
-    FrictionalParams,
-};
+use flexdem_contact::{update_frictional_contact, ContactKinematics};
 use flexdem_elements::pairs::{self, Candidate, ConnectionRef, PFacetRef, SphereRef};
 use flexdem_elements::touching::{dominates, Element, ElementCandidate, Topology};
-use flexdem_elements::virtual_sphere::{
-    contact_geometry_crossing, crossing_normal, distribute_force, virtual_sphere, ContactGeometry,
-    Feature, Kinematics, NodeLoad, Site, VirtualSphere,
-};
+use flexdem_elements::virtual_sphere::{distribute_force, Feature, Kinematics, NodeLoad, Site};
 use flexdem_elements::{Adjacency, Model};
 use flexdem_geom::{Real, Vec3};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
-/// One contact: where it sits on each body, its constants and its state.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct Contact {
-    /// Site on body 1 (a wall, or the body with the smaller (owner, feature): a free sphere
-    /// before a structure, a structure before one of higher id, and in a structure touching
-    /// itself the smaller feature).
-    pub site1: Site,
-    /// Site on body 2.
-    pub site2: Site,
-    /// Owners of the two sites (a free sphere, a structure or a wall), for handovers.
-    pub owners: (u64, u64),
-    /// Stiffnesses and friction.
-    pub params: FrictionalParams,
-    /// Shear force, last normal, dissipation.
-    pub state: FrictionalContact,
-    /// Forces of the last update.
-    #[serde(skip)]
-    pub forces: ContactForces,
-    /// Contact point at the last update.
-    pub point: Vec3,
-}
-
-impl Contact {
-    /// The key contacts are sorted and matched by: the two features.
-    pub fn key(&self) -> (Feature, Feature) {
-        (self.site1.feature, self.site2.feature)
-    }
-}
-
-/// What the contacts made at one detection added to or took from the energy balance (see
-/// [`ContactPipeline::settle_births`]).
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub(crate) struct BirthReport {
-    /// First touches found with more overlap than one step of approach explains.
-    pub born_deep: u64,
-    /// Energy put in by contacts that started or ended within the step before (J): see
-    /// [`ContactPipeline::settle_births`]; positive for contacts found late.
-    pub born_energy: Real,
-    /// Elastic energy given up by contacts that ended while holding it (J).
-    pub released: Real,
-}
-
-/// A touching found this step, before it is matched with the contacts of the last step.
-#[derive(Clone, Copy, Debug)]
-struct Touching {
-    candidate: Candidate,
-    materials: (u32, u32),
-    owners: (u64, u64),
-}
-
 /// The contacts with their history: the part of the simulation state a checkpoint keeps
 /// (the buffers that find and update them are `ContactPipeline`'s).
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct Contacts {
-    /// Current contacts, sorted by key.
+    /// Current contacts that involve a structure (sorted by key); those of free spheres with
+    /// free spheres and walls are in `pairs`.
     pub list: Vec<Contact>,
+    /// The candidate pairs of free spheres with free spheres and walls, with their contacts
+    /// (a neighbour list with history, `neighbours.rs`).
+    pub pairs: NeighbourList,
     /// Friction dissipated by contacts that have ended (J).
     pub ended_dissipation: Real,
     /// Contacts found late (first touches with an overlap one step of approach does not
@@ -90,6 +42,8 @@ pub struct Contacts {
 pub(crate) struct ContactPipeline {
     /// Indices in `list` of the contacts made at the last detection (new keys).
     pub(crate) fresh: Vec<usize>,
+    /// Buffers of the neighbour list's update (its fresh pairs among them).
+    pub(crate) pairs: PairScratch,
     candidates: Vec<Option<ElementCandidate>>,
     touching: Vec<ElementCandidate>,
     loads: Vec<[NodeLoad; 6]>,
@@ -114,41 +68,6 @@ struct Scratch {
     taken: Vec<bool>,
     ended: Vec<usize>,
     by_owners: Vec<usize>,
-}
-
-const SPHERE_OWNER: u64 = 0;
-const STRUCTURE_OWNER: u64 = 1 << 32;
-const WALL_OWNER: u64 = 2 << 32;
-
-fn owner(model: &Model, e: Element) -> u64 {
-    match e {
-        Element::Particle(i) => SPHERE_OWNER | u64::from(i),
-        Element::Connection(k) => {
-            STRUCTURE_OWNER | u64::from(model.connections[k as usize].structure)
-        }
-        Element::PFacet(k) => STRUCTURE_OWNER | u64::from(model.pfacets[k as usize].structure),
-    }
-}
-
-fn material(model: &Model, e: Element) -> u32 {
-    match e {
-        Element::Particle(i) => model.particles.material[i as usize],
-        Element::Connection(k) => model.connections[k as usize].material,
-        Element::PFacet(k) => model.pfacets[k as usize].material,
-    }
-}
-
-/// What a contact entering the balance at this step moves it by (see
-/// [`ContactPipeline::settle_births`]): `½·kn·δ·δ₋`, `δ` its overlap (less its offset) with geometry
-/// `g`, `δ₋ = δ − u·dt` the overlap one step before from its approach speed `u` over the step
-/// `dt` just done.
-fn birth_jump(c: &Contact, g: &ContactGeometry, dt: Real) -> Real {
-    let overlap = g.overlap - c.state.overlap_offset;
-    if !(overlap > 0.0) {
-        return 0.0;
-    }
-    let approach = -g.relative_velocity.dot(&g.normal);
-    0.5 * c.params.kn * overlap * (overlap - approach * dt)
 }
 
 /// The largest distance from a site's centre to its nodes: 0 on a particle, up to the length
@@ -326,13 +245,19 @@ impl ContactPipeline {
         collider: &Collider,
         dt: Real,
     ) -> BirthReport {
-        let p = &model.particles;
         // 1. exact closest features of every candidate pair; keep the touching ones. The
         // exact kernels cost up to a microsecond (triangle–triangle) and most candidate pairs
         // of the Verlet list do not touch: a separating slab between the elements' hulls
         // (taken once per element) says so first, and only the remaining pairs go on.
         let elements = &collider.elements;
-        elements.par_iter().map(|&e| hull(model, e)).collect_into_vec(&mut self.scratch.hulls);
+        // (only for the elements in a pair: free spheres among themselves are not here)
+        let unused = Hull::new([Vec3::zeros(); 3], 1, 0.0);
+        let paired = |i: usize| collider.paired.get(i).copied().unwrap_or(true);
+        elements
+            .par_iter()
+            .enumerate()
+            .map(|(i, &e)| if paired(i) { hull(model, e) } else { unused })
+            .collect_into_vec(&mut self.scratch.hulls);
         let hulls = &self.scratch.hulls;
         collider
             .pairs
@@ -407,26 +332,7 @@ impl ContactPipeline {
         let all = &mut scratch.all;
         all.clear();
         all.extend(scratch.survivors.iter().flatten());
-        for &(w, i) in &collider.wall_pairs {
-            let wall = &model.walls[w as usize];
-            let x = p.pos[i as usize];
-            let r = p.radius[i as usize];
-            let gap = (x - wall.point).dot(&wall.normal);
-            if r - gap > 0.0 {
-                let on_plane = x - wall.normal * gap;
-                all.push(Touching {
-                    candidate: Candidate {
-                        site1: Site::wall(w),
-                        site2: Site::particle(i, r),
-                        center1: on_plane,
-                        center2: x,
-                        distance: gap,
-                    },
-                    materials: (wall.material, p.material[i as usize]),
-                    owners: (WALL_OWNER | u64::from(w), owner(model, Element::Particle(i))),
-                });
-            }
-        }
+        all.extend(collider.wall_pairs.iter().filter_map(|&(w, i)| wall_touching(model, w, i)));
         // sorted by key through a small (key, index) list: the touchings themselves are large
         // and moving them in the sort cost more than the sort's comparisons
         let order = &mut scratch.order;
@@ -467,7 +373,14 @@ impl ContactPipeline {
             contacts.list.push(c);
         }
         self.fresh = fresh;
-        self.settle_births(contacts, model, dt)
+        let mut report = self.settle_births(contacts, model, dt);
+        // the free spheres' contacts, in their neighbour list
+        let pairs =
+            contacts.pairs.update(model, dt, &mut self.pairs, &mut contacts.ended_dissipation);
+        report.born_energy += pairs.born_energy;
+        report.released += pairs.released;
+        report.born_deep += pairs.born_deep;
+        report
     }
 
     /// What the contacts made at this detection inherit, so that no energy comes from a
@@ -576,14 +489,14 @@ impl ContactPipeline {
                 c.state.overlap_offset =
                     if continuous { before.state.overlap_offset } else { offset.max(0.0) };
                 // ... and the new one enters it as if it were born: the two nearly cancel
-                report.born_energy += birth_jump(c, &g, dt);
+                report.born_energy += birth_jump(&c.params, &c.state, &g, dt);
                 continue;
             }
             let (_, _, g) = geometry(model, &k, c);
             let approach = -g.relative_velocity.dot(&g.normal);
             // the overlap one step before, from the approach over the step
             if !(g.overlap - approach * dt > 1e-12 * reach) {
-                report.born_energy += birth_jump(c, &g, dt); // found on time
+                report.born_energy += birth_jump(&c.params, &c.state, &g, dt); // found on time
                 continue;
             }
             if by_owners.is_empty() {
@@ -595,7 +508,7 @@ impl ContactPipeline {
                 contacts.list[n].state.overlap_offset = g.overlap.max(0.0);
                 continue;
             }
-            report.born_energy += birth_jump(c, &g, dt);
+            report.born_energy += birth_jump(&c.params, &c.state, &g, dt);
             report.born_deep += 1;
         }
         for &o in ended.iter() {
@@ -657,12 +570,20 @@ impl ContactPipeline {
             c.forces = f;
             c.point = g.point;
         });
-        for (c, loads) in contacts.list.iter().zip(&self.loads) {
-            let n1 = c.site1.node_count();
-            let n2 = c.site2.node_count();
-            for l in loads[..n1].iter().chain(&loads[3..3 + n2]) {
-                force[l.node as usize] += l.force;
-                torque[l.node as usize] += l.torque;
+        // in key order, the free spheres' contacts among the others
+        let mut add = |l: &NodeLoad| {
+            force[l.node as usize] += l.force;
+            torque[l.node as usize] += l.torque;
+        };
+        for pick in merged(&contacts.list, &contacts.pairs) {
+            match pick {
+                Pick::General(n) => {
+                    let (c, loads) = (&contacts.list[n], &self.loads[n]);
+                    let n1 = c.site1.node_count();
+                    let n2 = c.site2.node_count();
+                    loads[..n1].iter().chain(&loads[3..3 + n2]).for_each(&mut add);
+                }
+                Pick::Pair(n) => contacts.pairs.loads(&self.pairs, n).for_each(&mut add),
             }
         }
     }
@@ -671,128 +592,71 @@ impl ContactPipeline {
 impl Contacts {
     /// Elastic energy stored in the contacts at the last update.
     pub fn elastic_energy(&self) -> Real {
-        self.list.iter().map(|c| c.forces.elastic_energy).sum()
+        self.list.iter().map(|c| c.forces.elastic_energy).sum::<Real>()
+            + self.pairs.elastic_energy()
     }
 
     /// Energy dissipated by contact friction since the start.
     pub fn dissipated(&self) -> Real {
-        self.ended_dissipation + self.list.iter().map(|c| c.state.dissipated.total()).sum::<Real>()
+        self.ended_dissipation
+            + self.list.iter().map(|c| c.state.dissipated.total()).sum::<Real>()
+            + self.pairs.dissipated()
     }
-}
 
-fn new_contact(model: &Model, t: &Touching) -> Contact {
-    let m1 = &model.materials[t.materials.0 as usize];
-    let m2 = &model.materials[t.materials.1 as usize];
-    let c = &t.candidate;
-    let (r1, r2) = match c.site1.feature {
-        // a wall has the particle's radius in eq 3 and 4 (YADE)
-        Feature::Wall(_) => (c.site2.radius, c.site2.radius),
-        _ => (c.site1.radius, c.site2.radius),
-    };
-    let normal = birth_normal(model, c);
-    Contact {
-        site1: c.site1,
-        site2: c.site2,
-        owners: t.owners,
-        params: FrictionalParams::from_materials(m1, r1, m2, r2),
-        state: FrictionalContact::new(normal),
-        forces: ContactForces::default(),
-        point: c.center1 + normal * c.site1.radius,
+    /// Number of contacts (both lists).
+    pub fn len(&self) -> usize {
+        self.list.len() + self.pairs.len()
     }
-}
 
-/// The normal a new contact is made with: from centre 1 to centre 2 (eq 1's geometry). Where
-/// the centres coincide (the skeletons met or crossed before the contact was found) that
-/// direction does not exist; then the face normal of a PFacet site, or the common normal of
-/// two edges, or the relative velocity, turned against the approach (`n·(v2 − v1) ≤ 0`), so
-/// that the force pushes each body back the way it came.
-fn birth_normal(model: &Model, c: &Candidate) -> Vec3 {
-    let d = c.center2 - c.center1;
-    let scale = c.site1.radius + c.site2.radius + c.center1.abs().max() + c.center2.abs().max();
-    if d.norm() > 1e-14 * scale {
-        return d.normalize();
+    /// Whether there is no contact.
+    pub fn is_empty(&self) -> bool {
+        self.list.is_empty() && self.pairs.is_empty()
     }
-    let p = &model.particles;
-    let k = Kinematics { pos: &p.pos, vel: &p.vel, ang_vel: &p.ang_vel };
-    let v = virtual_sphere(&c.site2, &k).velocity - virtual_sphere(&c.site1, &k).velocity;
-    let axis = |site: &Site| -> Vec3 {
-        match site.feature {
-            Feature::Edge(_) => p.pos[site.nodes[1] as usize] - p.pos[site.nodes[0] as usize],
-            _ => Vec3::zeros(),
-        }
-    };
-    let face = |site: &Site| -> Vec3 {
-        match site.feature {
-            Feature::Face(_) => {
-                let [a, b, c] = site.nodes.map(|i| p.pos[i as usize]);
-                (b - a).cross(&(c - a))
+
+    /// Every contact, in key order, as a [`Contact`] (the free spheres' made from their
+    /// neighbour list): for output and inspection, not for the step.
+    pub fn all(&self, model: &Model) -> Vec<Contact> {
+        merged(&self.list, &self.pairs)
+            .map(|pick| match pick {
+                Pick::General(n) => self.list[n].clone(),
+                Pick::Pair(n) => {
+                    self.pairs.contact(model, n).expect("merged yields touching pairs")
+                }
+            })
+            .collect()
+    }
+
+    /// Calls `f(wall, force on the body, normal force, kn)` on every wall contact, in key
+    /// order (nothing made: the walls' loads are summed every step).
+    pub(crate) fn for_each_on_wall(&self, mut f: impl FnMut(u32, &Vec3, Real, Real)) {
+        for pick in merged(&self.list, &self.pairs) {
+            let (key, forces, params) = match pick {
+                Pick::General(n) => {
+                    let c = &self.list[n];
+                    (c.key(), &c.forces, &c.params)
+                }
+                Pick::Pair(n) => {
+                    let (key, c) = self.pairs.get(n);
+                    (*key, &c.forces, &c.params)
+                }
+            };
+            if let Feature::Wall(w) = key.0 {
+                f(w, &forces.force_on_2, forces.normal_force, params.kn);
             }
-            _ => Vec3::zeros(),
         }
-    };
-    let tiny = |x: &Vec3| x.norm() <= 1e-14 * scale * scale;
-    let mut n = face(&c.site1);
-    if tiny(&n) {
-        n = face(&c.site2);
     }
-    if tiny(&n) {
-        n = axis(&c.site1).cross(&axis(&c.site2));
-    }
-    if tiny(&n) {
-        n = -v;
-    }
-    if n.norm() == 0.0 || !n.iter().all(|x| x.is_finite()) {
-        return Vec3::z();
-    }
-    let n = n.normalize();
-    if n.dot(&v) > 0.0 {
-        -n
-    } else {
-        n
-    }
-}
 
-/// Virtual spheres and contact geometry of a contact from the current state.
-fn geometry(
-    model: &Model,
-    k: &Kinematics<'_>,
-    c: &Contact,
-) -> (VirtualSphere, VirtualSphere, ContactGeometry) {
-    let vs2 = virtual_sphere(&c.site2, k);
-    match c.site1.feature {
-        Feature::Wall(w) => {
-            let wall = &model.walls[w as usize];
-            let gap = (vs2.center - wall.point).dot(&wall.normal);
-            let on_plane = vs2.center - wall.normal * gap;
-            let vs1 = VirtualSphere {
-                center: on_plane,
-                velocity: wall.velocity,
-                angular_velocity: Vec3::zeros(),
-            };
-            let r = c.site2.radius;
-            let overlap = r - gap;
-            let point = on_plane - wall.normal * (0.5 * overlap);
-            let v2 = vs2.velocity + vs2.angular_velocity.cross(&(point - vs2.center));
-            let g = ContactGeometry {
-                normal: wall.normal,
-                overlap,
-                point,
-                relative_velocity: v2 - wall.velocity,
-                spin_about_normal: 0.5 * wall.normal.dot(&vs2.angular_velocity),
-            };
-            (vs1, vs2, g)
-        }
-        _ => {
-            let vs1 = virtual_sphere(&c.site1, k);
-            let g = contact_geometry_crossing(
-                &vs1,
-                c.site1.radius,
-                &vs2,
-                c.site2.radius,
-                &c.state.normal,
-                || crossing_normal(&c.site1, &c.site2, k.pos, &c.state.normal),
-            );
-            (vs1, vs2, g)
+    /// Calls `f` on every contact in key order (the free spheres' made on the fly).
+    pub(crate) fn for_each(&self, model: &Model, mut f: impl FnMut(&Contact)) {
+        for pick in merged(&self.list, &self.pairs) {
+            match pick {
+                Pick::General(n) => f(&self.list[n]),
+                Pick::Pair(n) => {
+                    if let Some(c) = self.pairs.contact(model, n) {
+                        f(&c);
+                    }
+                }
+            }
         }
     }
 }

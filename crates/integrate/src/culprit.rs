@@ -43,18 +43,16 @@ fn feature(model: &Model, f: Feature) -> String {
 pub(crate) fn describe(state: &State) -> String {
     let model = &state.model;
     let mut parts = Vec::new();
-    let contact = state
-        .contacts
-        .list
-        .iter()
-        .max_by(|a, b| a.forces.elastic_energy.total_cmp(&b.forces.elastic_energy));
+    let all = state.contacts.all(model);
+    let contact =
+        all.iter().max_by(|a, b| a.forces.elastic_energy.total_cmp(&b.forces.elastic_energy));
     match contact {
         Some(c) if c.forces.elastic_energy > 0.0 => parts.push(format!(
             "The contact holding the most elastic energy ({:.3e} J, normal force {:.3e} N, \
              of {} contacts) is between {} and {} at ({:.4}, {:.4}, {:.4})",
             c.forces.elastic_energy,
             c.forces.normal_force,
-            state.contacts.list.len(),
+            all.len(),
             feature(model, c.site1.feature),
             feature(model, c.site2.feature),
             c.point.x,

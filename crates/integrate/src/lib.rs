@@ -5,6 +5,7 @@
 
 mod broad_phase;
 mod collider;
+mod contact;
 mod contacts;
 mod culprit;
 mod energy;
@@ -12,6 +13,7 @@ mod error;
 mod integrator;
 mod links;
 mod measures;
+mod neighbours;
 mod pipeline;
 mod prefilter;
 mod pressure;
@@ -35,6 +37,7 @@ pub use measures::{
     deviator_stress, love_weber_stress, mean_stress, membrane_sample_volume, normal_force,
     solid_fraction, wall_gap, wall_normal_stress,
 };
+pub use neighbours::{ContactKey, NeighbourList, PairContact};
 pub use pipeline::ForceHook;
 pub use pressure::{add_pressure_forces, pressure_node_force, Pressure};
 pub use region::Region;

@@ -23,10 +23,9 @@
 //! of approach, choose it so that the wall moves by a small fraction of the particles' radius
 //! per step.
 
-use crate::contacts::Contact;
+use crate::contacts::Contacts;
 use crate::measures::{membrane_sample_volume, normal_force, wall_gap};
 use crate::SimulationError;
-use flexdem_elements::virtual_sphere::Feature;
 use flexdem_geom::{Real, Vec3};
 use serde::{Deserialize, Serialize};
 
@@ -244,19 +243,18 @@ pub(crate) struct WallLoads {
 
 impl WallLoads {
     /// Sums the force and the stiffness of the contacts on each of `walls` walls.
-    pub(crate) fn sum(&mut self, contacts: &[Contact], walls: usize) {
+    pub(crate) fn sum(&mut self, contacts: &Contacts, walls: usize) {
         self.force.clear();
         self.force.resize(walls, Vec3::zeros());
         self.stiffness.clear();
         self.stiffness.resize(walls, 0.0);
-        for c in contacts {
-            let Feature::Wall(w) = c.site1.feature else { continue };
+        contacts.for_each_on_wall(|w, force_on_2, normal_force, kn| {
             let w = w as usize;
-            self.force[w] -= c.forces.force_on_2;
-            if c.forces.normal_force > 0.0 {
-                self.stiffness[w] += c.params.kn;
+            self.force[w] -= force_on_2;
+            if normal_force > 0.0 {
+                self.stiffness[w] += kn;
             }
-        }
+        });
     }
 }
 

@@ -100,9 +100,16 @@ impl Simulation {
         &self.state.links
     }
 
-    /// Current contacts with their state and the forces of the last step, sorted by key.
-    pub fn contacts(&self) -> &[Contact] {
-        &self.state.contacts.list
+    /// Current contacts with their state and the forces of the last step, sorted by key
+    /// (made for the caller: those of free spheres live in a neighbour list, see
+    /// [`Contacts::pairs`](crate::Contacts)). For a count, [`Simulation::contact_count`].
+    pub fn contacts(&self) -> Vec<Contact> {
+        self.state.contacts.all(&self.state.model)
+    }
+
+    /// Number of current contacts.
+    pub fn contact_count(&self) -> usize {
+        self.state.contacts.len()
     }
 
     /// Imposed forces and torques.
@@ -401,6 +408,7 @@ impl Simulation {
             terms.elastic_contacts = 0.0;
             contacts.ended_dissipation = contacts.dissipated();
             contacts.list.clear();
+            contacts.pairs.clear();
         }
         self.state.wall_controls.resize(model.walls.len(), WallControl::Velocity);
         self.pipeline.rebuild(&self.state);

@@ -7,6 +7,7 @@ use crate::culprit::describe;
 use crate::energy::PendingWork;
 use crate::integrator::{leapfrog_step, StepWork};
 use crate::links::LinkUpdate;
+use crate::neighbours::{merged_fresh, Pick};
 use crate::pressure::add_pressure_forces;
 use crate::servo::steer_walls;
 use crate::settings::TimeStep;
@@ -14,7 +15,6 @@ use crate::simulation::Simulation;
 use crate::time_step::{critical_step_from_stiffness, p_wave_time_step, StiffnessSums};
 use crate::timers::Stage;
 use crate::SimulationError;
-use flexdem_elements::virtual_sphere::Feature;
 use flexdem_elements::Dofs;
 use flexdem_geom::{Real, Vec3};
 use rayon::prelude::*;
@@ -43,9 +43,7 @@ impl Simulation {
                 k.add(i, &n, s.kn, s.ks, 0.5 * len, s.kt, s.kb);
             }
         }
-        for c in &self.state.contacts.list {
-            add_contact_stiffness(&mut k, c);
-        }
+        self.state.contacts.for_each(&self.state.model, |c| add_contact_stiffness(&mut k, c));
         self.state.clock.dt_updated_at = self.state.clock.steps;
         let critical = critical_step_from_stiffness(&self.state.model, &k)
             .or_else(|| p_wave_time_step(&self.state.model))
@@ -121,7 +119,9 @@ impl Simulation {
     fn collision_stage(&mut self) {
         let t0 = self.pipeline.timers.start();
         if self.pipeline.collider.needs_rebuild(&self.state.model) {
-            self.pipeline.collider.rebuild(&self.state.model);
+            let collider = &mut self.pipeline.collider;
+            collider.rebuild(&self.state.model);
+            self.state.contacts.pairs.rebuild(&collider.sphere_pairs, &collider.sphere_wall_pairs);
         }
         self.pipeline.timers.stop(Stage::Collision, t0);
     }
@@ -132,7 +132,7 @@ impl Simulation {
         let t0 = self.pipeline.timers.start();
         self.pipeline.force.iter_mut().for_each(|f| *f = Vec3::zeros());
         self.pipeline.torque.iter_mut().for_each(|t| *t = Vec3::zeros());
-        let before = self.state.contacts.list.len();
+        let before = self.state.contacts.len();
         let births = self.pipeline.contacts.detect(
             &mut self.state.contacts,
             &self.state.model,
@@ -144,7 +144,7 @@ impl Simulation {
         self.state.energy.terms.contact_births += births.born_energy;
         self.state.energy.terms.contact_releases += births.released;
         self.state.contacts.born_deep += births.born_deep;
-        let appeared = self.state.contacts.list.len() > before;
+        let appeared = self.state.contacts.len() > before;
         self.account_new_contacts();
         self.pipeline.contacts.apply(
             &mut self.state.contacts,
@@ -224,7 +224,7 @@ impl Simulation {
     fn wall_stage(&mut self, dt: Real) -> WallPower {
         let t0 = self.pipeline.timers.start();
         let walls = self.state.model.walls.len();
-        self.pipeline.walls.sum(&self.state.contacts.list, walls);
+        self.pipeline.walls.sum(&self.state.contacts, walls);
         let before = self.wall_power();
         let steered = steer_walls(
             &mut self.state.model,
@@ -271,15 +271,11 @@ impl Simulation {
         if walls.iter().all(|w| w.velocity == Vec3::zeros()) {
             return 0.0;
         }
-        self.state
-            .contacts
-            .list
-            .iter()
-            .filter_map(|c| match c.site1.feature {
-                Feature::Wall(w) => Some(c.forces.force_on_2.dot(&walls[w as usize].velocity)),
-                _ => None,
-            })
-            .sum()
+        let mut power = 0.0;
+        self.state.contacts.for_each_on_wall(|w, force_on_2, _, _| {
+            power += force_on_2.dot(&walls[w as usize].velocity);
+        });
+        power
     }
 
     /// Time step: the critical step is re-estimated every `time_step_interval` steps (for a
@@ -298,7 +294,8 @@ impl Simulation {
     /// contact stiffer than the links must not run for even a few steps above its critical
     /// step). O(new contacts); the full estimate is redone every `time_step_interval` steps.
     fn account_new_contacts(&mut self) {
-        if self.pipeline.contacts.fresh.is_empty()
+        let fresh = &self.pipeline.contacts;
+        if (fresh.fresh.is_empty() && fresh.pairs.fresh.is_empty())
             || self.state.clock.stiffness.translational.len() != self.state.model.particles.len()
         {
             return;
@@ -306,8 +303,17 @@ impl Simulation {
         let TimeStep::Auto { safety } = self.state.settings.time_step else { return };
         let p = &self.state.model.particles;
         let mut lowest = Real::INFINITY;
-        for &i in &self.pipeline.contacts.fresh {
-            let c = &self.state.contacts.list[i];
+        let contacts = &self.state.contacts;
+        let picks = merged_fresh(&contacts.list, &fresh.fresh, &contacts.pairs, &fresh.pairs.fresh);
+        for pick in picks {
+            let made;
+            let c = match pick {
+                Pick::General(i) => &contacts.list[i],
+                Pick::Pair(i) => {
+                    made = contacts.pairs.contact(&self.state.model, i).expect("a fresh pair");
+                    &made
+                }
+            };
             add_contact_stiffness(&mut self.state.clock.stiffness, c);
             for site in [&c.site1, &c.site2] {
                 for slot in 0..site.node_count() {

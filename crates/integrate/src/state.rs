@@ -123,6 +123,7 @@ impl State {
             && (k.translational.is_empty() || k.translational.len() == n)
             && self.loads.iter().all(|l| l.particles.iter().all(|&i| (i as usize) < n))
             && self.contacts.list.iter().all(|c| contact_nodes_exist(c, n))
+            && self.contacts.pairs.fits(n, self.model.walls.len())
             && c.dt > 0.0
             && c.dt.is_finite()
             && c.previous_dt >= 0.0

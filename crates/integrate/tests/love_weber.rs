@@ -58,7 +58,7 @@ fn a_lattice_squeezed_by_six_walls_is_hydrostatic() {
     let expected = f / (s * s);
     let lo = Vec3::repeat(-s / 2.0);
     let region = Region::Box { min: lo, max: lo + Vec3::repeat(n as Real * s) };
-    let sigma = love_weber_stress(sim.model(), sim.contacts(), &region, None);
+    let sigma = love_weber_stress(sim.model(), &sim.contacts(), &region, None);
     let error = relative(&sigma, &(Matrix3::identity() * expected));
     eprintln!("hydrostatic: σ = {:?}, expected {expected:.9e} Pa, error {error:.1e}", sigma);
     assert!(error < 1e-12, "{sigma:?} vs {expected}");
@@ -84,7 +84,7 @@ fn columns_pressed_between_two_walls_carry_a_uniaxial_stress() {
     let lo = Vec3::new(-l / 2.0, -l / 2.0, -s / 2.0);
     let size = Vec3::new(n as Real * l, n as Real * l, n as Real * s);
     let region = Region::Box { min: lo, max: lo + size };
-    let sigma = love_weber_stress(sim.model(), sim.contacts(), &region, None);
+    let sigma = love_weber_stress(sim.model(), &sim.contacts(), &region, None);
     let uniaxial = Matrix3::from_diagonal(&Vec3::new(0.0, 0.0, expected));
     let error = relative(&sigma, &uniaxial);
     eprintln!(
@@ -100,7 +100,7 @@ fn columns_pressed_between_two_walls_carry_a_uniaxial_stress() {
         assert!((stress / expected - 1.0).abs() < 1e-12, "wall {w}: {stress} vs {expected}");
     }
     let doubled =
-        love_weber_stress(sim.model(), sim.contacts(), &region, Some(2.0 * region.volume()));
+        love_weber_stress(sim.model(), &sim.contacts(), &region, Some(2.0 * region.volume()));
     assert!(relative(&(doubled * 2.0), &sigma) < 1e-15);
     // a region holding only the middle layer: one sphere per column, each with its two
     // contacts, over a third of the volume: the same stress
@@ -108,7 +108,7 @@ fn columns_pressed_between_two_walls_carry_a_uniaxial_stress() {
         min: lo + Vec3::new(0.0, 0.0, s),
         max: lo + Vec3::new(size.x, size.y, 2.0 * s),
     };
-    let sigma = love_weber_stress(sim.model(), sim.contacts(), &middle, None);
+    let sigma = love_weber_stress(sim.model(), &sim.contacts(), &middle, None);
     assert!(relative(&sigma, &uniaxial) < 1e-12, "{sigma:?}");
 }
 

@@ -118,7 +118,7 @@ fn a_servo_wall_holds_its_target_stress_at_rest() {
         // plane (δ the sphere–wall overlap)
         let height = wall.point.z;
         let region = Region::Box { min: Vec3::zeros(), max: Vec3::new(side, side, height) };
-        let sigma = love_weber_stress(sim.model(), sim.contacts(), &region, None);
+        let sigma = love_weber_stress(sim.model(), &sim.contacts(), &region, None);
         let kn = sim.contacts()[0].params.kn;
         let delta = force.norm() / (n * n) as Real / kn;
         let expected = stress * (height + delta) / height;

@@ -182,7 +182,7 @@ fn feature_kind(site: &Site) -> i32 {
 pub fn contacts_polydata(sim: &Simulation) -> PolyData {
     let list = sim.contacts();
     let mut points = Vec::with_capacity(2 * list.len());
-    for c in list {
+    for c in &list {
         points.push(xyz(&site_centre(sim, &c.site1, &c.point)));
         points.push(xyz(&site_centre(sim, &c.site2, &c.point)));
     }

@@ -139,7 +139,7 @@ const STRESS_COMPONENTS: [&str; 8] =
 /// The Love–Weber stress of the spheres in `region` over `volume`, in the order of
 /// [`STRESS_COMPONENTS`] (Pa).
 fn stress_values(sim: &Simulation, region: &Region, volume: Option<Real>) -> [Real; 8] {
-    let s = love_weber_stress(sim.model(), sim.contacts(), region, volume);
+    let s = love_weber_stress(sim.model(), &sim.contacts(), region, volume);
     let sym = |i: usize, j: usize| 0.5 * (s[(i, j)] + s[(j, i)]);
     [
         s[(0, 0)],

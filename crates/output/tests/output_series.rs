@@ -243,7 +243,7 @@ fn wall_and_sample_series_give_their_columns_and_values() {
     );
     let row = flexdem_output::row_values(&series, &sim);
     assert_eq!(row.len(), columns.len());
-    let contact = sim.contacts().iter().find(|c| c.site2.nodes[0] == 0).unwrap();
+    let contact = sim.contacts().into_iter().find(|c| c.site2.nodes[0] == 0).unwrap();
     let force = contact.forces.force_on_2;
     assert!(force.z > 0.0, "the sphere is not pressed on its wall: {force:?}");
     assert_eq!(row[2..5], [-force.x, -force.y, -force.z]);

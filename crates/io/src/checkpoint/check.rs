@@ -4,9 +4,10 @@
 //! checksum was recomputed (the mutation fuzzer) can hold NaN weights or a non-unit normal in
 //! a contact, which the contact law assumes away.
 
+use flexdem_contact::{FrictionalContact, FrictionalParams};
 use flexdem_elements::virtual_sphere::{Feature, Site};
 use flexdem_geom::{Real, Vec3};
-use flexdem_integrate::{Contact, Load, Ramp, State};
+use flexdem_integrate::{Contact, ContactKey, Load, PairContact, Ramp, State};
 
 fn finite(v: &Vec3) -> bool {
     v.iter().all(|x| x.is_finite())
@@ -47,13 +48,33 @@ fn check_site(s: &State, site: &Site) -> Result<(), String> {
 fn check_contact(s: &State, c: &Contact) -> Result<(), String> {
     check_site(s, &c.site1)?;
     check_site(s, &c.site2)?;
-    let p = &c.params;
+    check_law(&c.params, &c.state, &c.point)
+}
+
+/// What is wrong with the touching pair `key` of the free spheres' neighbour list, if
+/// anything: its bodies a free sphere and a free sphere or a wall of the model, its state.
+fn check_pair(s: &State, key: &ContactKey, c: &PairContact) -> Result<(), String> {
+    let model = &s.model;
+    for f in [key.0, key.1] {
+        let ok = match f {
+            Feature::Particle(i) => (i as usize) < model.particles.len(),
+            Feature::Wall(w) => (w as usize) < model.walls.len(),
+            Feature::Edge(_) | Feature::Face(_) => false,
+        };
+        if !ok {
+            return Err(format!("feature {f:?} is not a free sphere or wall of the model"));
+        }
+    }
+    check_law(&c.params, &c.state, &c.point)
+}
+
+/// What is wrong with a contact's constants and state, if anything.
+fn check_law(p: &FrictionalParams, st: &FrictionalContact, point: &Vec3) -> Result<(), String> {
     let non_negative = |x: Real| x.is_finite() && x >= 0.0;
     if !(non_negative(p.kn) && non_negative(p.ks) && non_negative(p.tan_phi)) {
         return Err(format!("stiffness or friction {p:?}"));
     }
-    let st = &c.state;
-    if !(finite(&st.shear_force) && finite(&st.normal) && finite(&c.point)) {
+    if !(finite(&st.shear_force) && finite(&st.normal) && finite(point)) {
         return Err("a shear force, normal or contact point that is not finite".into());
     }
     if (st.normal.norm_squared() - 1.0).abs() > 1e-6 {
@@ -90,6 +111,9 @@ pub(crate) fn check_state(s: &State) -> Result<(), String> {
     }
     for (i, c) in s.contacts.list.iter().enumerate() {
         check_contact(s, c).map_err(|e| format!("contact {i}: {e}"))?;
+    }
+    for (i, (key, c)) in s.contacts.pairs.touching().enumerate() {
+        check_pair(s, key, c).map_err(|e| format!("contact {i} of the free spheres: {e}"))?;
     }
     for (i, l) in s.loads.iter().enumerate() {
         check_load(l).map_err(|e| format!("load {i}: {e}"))?;

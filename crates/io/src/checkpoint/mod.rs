@@ -24,8 +24,9 @@
 //! with the same parts in another order): files of version 2 are refused with that message.
 //! Version 4 adds the wall controls to the [`State`] (`State::wall_controls`: strain control
 //! or a servo holding a stress, one per wall); version 5 the pressures on PFacets
-//! (`State::pressures`) and the enclosed-volume quantity of the output series. Files of older
-//! versions are refused with the version error, which says so.
+//! (`State::pressures`) and the enclosed-volume quantity of the output series; version 6 the
+//! free spheres' neighbour list (`Contacts::pairs`: their touching pairs, with their history).
+//! Files of older versions are refused with the version error, which says so.
 //!
 //! # Writing
 //!
@@ -66,7 +67,7 @@ use std::path::{Path, PathBuf};
 pub const CHECKPOINT_MAGIC: [u8; 8] = *b"FLXDMCKP";
 
 /// The format version this build writes and reads (see the module documentation).
-pub const CHECKPOINT_VERSION: u32 = 5;
+pub const CHECKPOINT_VERSION: u32 = 6;
 
 /// Size of the header before the payload: magic, version, length, checksum (bytes).
 pub const CHECKPOINT_HEADER_LEN: usize = 24;

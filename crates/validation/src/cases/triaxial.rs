@@ -110,7 +110,7 @@ fn run_test(case: &str, file: &str) -> Result<TestRun, ValidationError> {
             // the grains' stress over the sample's volume, from every sphere
             let everywhere = Region::Box { min: Vec3::repeat(-1e3), max: Vec3::repeat(1e3) };
             let sigma =
-                love_weber_stress(sim.model(), sim.contacts(), &everywhere, Some(state.volume));
+                love_weber_stress(sim.model(), &sim.contacts(), &everywhere, Some(state.volume));
             consolidated = Some((state.axial_stress, mean_stress(&sigma)));
         }
         if stop == Stop::Reached {

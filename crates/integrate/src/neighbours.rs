@@ -1,0 +1,477 @@
+//! Contacts of free spheres with free spheres and with walls, kept in a neighbour list with
+//! history (as LAMMPS and LIGGGHTS keep granular contacts, issue 14): between two builds of
+//! the collider the candidate pairs do not change, so each carries its contact state in place
+//! instead of being found, ordered and matched again every step.
+//!
+//! These contacts are the same as those of the general pipeline (`contacts.rs`), bit for bit:
+//! the same closest points (`pairs::sphere_sphere`, the wall's plane), the same new-contact
+//! rule, the same law and the same force distribution. What a free sphere cannot have is
+//! skipped: the one-contact-per-touching rule (a sphere is one element) and hand-overs and
+//! splits (a contact can only be taken over by a contact of the same two bodies, and two
+//! free spheres, or a sphere and a wall, touch once). The births and ends enter the energy
+//! balance as in [`crate::contacts`]. The forces are summed into the particles in the order
+//! of the contacts' keys, merged with the general contacts' ([`merged`]): the results do not
+//! depend on which pipeline a contact went through, nor on the thread count.
+
+use crate::contact::{
+    birth_jump, geometry_of, new_contact, sphere_touching, wall_touching, BirthReport, Contact,
+    SPHERE_OWNER, WALL_OWNER,
+};
+use flexdem_contact::{
+    update_frictional_contact, ContactForces, ContactKinematics, FrictionalContact,
+    FrictionalParams,
+};
+use flexdem_elements::virtual_sphere::{distribute_force, Feature, Kinematics, NodeLoad, Site};
+use flexdem_elements::Model;
+use flexdem_geom::{Real, Vec3};
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+
+/// The key of a contact: its two features (body 1's, body 2's).
+pub type ContactKey = (Feature, Feature);
+
+/// The state of a touching pair: what a [`Contact`] holds less what the key says (the sites
+/// and the owners).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct PairContact {
+    /// Stiffnesses and friction.
+    pub params: FrictionalParams,
+    /// Shear force, last normal, dissipation.
+    pub state: FrictionalContact,
+    /// Forces of the last update.
+    #[serde(skip)]
+    pub forces: ContactForces,
+    /// Contact point at the last update.
+    pub point: Vec3,
+}
+
+/// The candidate pairs of free spheres (with free spheres, then with walls), sorted by key,
+/// each with its contact while it touches. Saved (and compared) as its touching pairs only:
+/// the candidates are rebuilt with the collider.
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
+#[serde(from = "Vec<(ContactKey, PairContact)>", into = "Vec<(ContactKey, PairContact)>")]
+pub struct NeighbourList {
+    keys: Vec<ContactKey>,
+    contacts: Vec<Option<PairContact>>,
+}
+
+impl From<Vec<(ContactKey, PairContact)>> for NeighbourList {
+    fn from(touching: Vec<(ContactKey, PairContact)>) -> Self {
+        let (keys, contacts) = touching.into_iter().map(|(k, c)| (k, Some(c))).unzip();
+        NeighbourList { keys, contacts }
+    }
+}
+
+impl From<NeighbourList> for Vec<(ContactKey, PairContact)> {
+    fn from(list: NeighbourList) -> Self {
+        list.keys.into_iter().zip(list.contacts).filter_map(|(k, c)| Some((k, c?))).collect()
+    }
+}
+
+impl PartialEq for NeighbourList {
+    fn eq(&self, other: &Self) -> bool {
+        self.touching().eq(other.touching())
+    }
+}
+
+/// What one pair did at a step: its node loads (body 1's unused for a wall), and what its
+/// birth or end moved the energy balance by.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct PairOutcome {
+    loads: [NodeLoad; 2],
+    born_energy: Real,
+    released: Real,
+    ended_dissipation: Real,
+    born_deep: bool,
+    fresh: bool,
+}
+
+impl Default for PairOutcome {
+    fn default() -> Self {
+        let none = NodeLoad { node: 0, force: Vec3::zeros(), torque: Vec3::zeros() };
+        PairOutcome {
+            loads: [none; 2],
+            born_energy: 0.0,
+            released: 0.0,
+            ended_dissipation: 0.0,
+            born_deep: false,
+            fresh: false,
+        }
+    }
+}
+
+/// Buffers of [`NeighbourList::update`] (nothing here is saved).
+#[derive(Clone, Debug, Default)]
+pub(crate) struct PairScratch {
+    /// One outcome per candidate pair of the last update.
+    pub(crate) outcomes: Vec<PairOutcome>,
+    /// Indices of the pairs that started touching at the last update.
+    pub(crate) fresh: Vec<usize>,
+}
+
+/// The sites of the contact of `key` (a free sphere's radius from the model).
+pub(crate) fn sites(model: &Model, key: &ContactKey) -> (Site, Site) {
+    let r = &model.particles.radius;
+    let particle = |f: Feature| match f {
+        Feature::Particle(i) => Site::particle(i, r[i as usize]),
+        Feature::Wall(w) => Site::wall(w),
+        // the list holds only particles and walls
+        Feature::Edge(_) | Feature::Face(_) => Site::wall(u32::MAX),
+    };
+    (particle(key.0), particle(key.1))
+}
+
+/// Owner code of a key's body (as `contacts::owner`): a free sphere or a wall.
+fn owners(key: &ContactKey) -> (u64, u64) {
+    let code = |f: Feature| match f {
+        Feature::Wall(w) => WALL_OWNER | u64::from(w),
+        Feature::Particle(i) => SPHERE_OWNER | u64::from(i),
+        Feature::Edge(_) | Feature::Face(_) => u64::MAX,
+    };
+    (code(key.0), code(key.1))
+}
+
+impl NeighbourList {
+    /// Candidate pairs (touching or not).
+    pub fn candidates(&self) -> usize {
+        self.keys.len()
+    }
+
+    /// Touching pairs.
+    pub fn len(&self) -> usize {
+        self.contacts.iter().filter(|c| c.is_some()).count()
+    }
+
+    /// Whether no pair touches.
+    pub fn is_empty(&self) -> bool {
+        self.contacts.iter().all(|c| c.is_none())
+    }
+
+    /// The touching pairs, in key order.
+    pub fn touching(&self) -> impl Iterator<Item = (&ContactKey, &PairContact)> + '_ {
+        self.keys.iter().zip(&self.contacts).filter_map(|(k, c)| Some((k, c.as_ref()?)))
+    }
+
+    /// The pair at `index` (of the candidates) as a [`Contact`], if it touches.
+    pub(crate) fn contact(&self, model: &Model, index: usize) -> Option<Contact> {
+        let c = self.contacts[index].as_ref()?;
+        let key = &self.keys[index];
+        let (site1, site2) = sites(model, key);
+        Some(Contact {
+            site1,
+            site2,
+            owners: owners(key),
+            params: c.params,
+            state: c.state.clone(),
+            forces: c.forces,
+            point: c.point,
+        })
+    }
+
+    /// The key and contact of the touching pair at candidate index `index`.
+    pub(crate) fn get(&self, index: usize) -> (&ContactKey, &PairContact) {
+        (&self.keys[index], self.contacts[index].as_ref().expect("a touching pair"))
+    }
+
+    /// Ends every contact (the model changed): their friction and elastic energy are the
+    /// caller's to account for.
+    pub(crate) fn clear(&mut self) {
+        self.keys.clear();
+        self.contacts.clear();
+    }
+
+    /// Elastic energy stored at the last update.
+    pub fn elastic_energy(&self) -> Real {
+        self.touching().map(|(_, c)| c.forces.elastic_energy).sum()
+    }
+
+    /// Friction dissipated by the touching pairs over their lives.
+    pub fn dissipated(&self) -> Real {
+        self.touching().map(|(_, c)| c.state.dissipated.total()).sum()
+    }
+
+    /// Whether every pair refers to particles and walls of a model of `particles` particles
+    /// and `walls` walls, free spheres against free spheres or walls.
+    pub(crate) fn fits(&self, particles: usize, walls: usize) -> bool {
+        self.keys.iter().all(|k| match k {
+            (Feature::Particle(i), Feature::Particle(j)) => i < j && (*j as usize) < particles,
+            (Feature::Wall(w), Feature::Particle(i)) => {
+                (*w as usize) < walls && (*i as usize) < particles
+            }
+            _ => false,
+        }) && self.keys.windows(2).all(|w| w[0] < w[1])
+    }
+
+    /// The candidates of a new build of the collider: `spheres` (particle pairs, sorted) and
+    /// `walls` ((wall, particle) pairs, sorted), with the contacts of the touching pairs
+    /// carried over by key. A touching pair missing from the new candidates (which the
+    /// collider's margins exclude) is kept, so that its end is accounted for.
+    pub(crate) fn rebuild(&mut self, spheres: &[(u32, u32)], walls: &[(u32, u32)]) {
+        let old_keys = std::mem::take(&mut self.keys);
+        let old_contacts = std::mem::take(&mut self.contacts);
+        let mut old =
+            old_keys.into_iter().zip(old_contacts).filter(|(_, c)| c.is_some()).peekable();
+        let new = spheres
+            .iter()
+            .map(|&(i, j)| (Feature::Particle(i), Feature::Particle(j)))
+            .chain(walls.iter().map(|&(w, i)| (Feature::Wall(w), Feature::Particle(i))));
+        self.keys.reserve(spheres.len() + walls.len());
+        self.contacts.reserve(spheres.len() + walls.len());
+        for key in new {
+            while let Some((k, _)) = old.peek() {
+                if *k >= key {
+                    break;
+                }
+                let (k, c) = old.next().expect("peeked");
+                self.keys.push(k);
+                self.contacts.push(c);
+            }
+            let carried = match old.peek() {
+                Some((k, _)) if *k == key => old.next().and_then(|(_, c)| c),
+                _ => None,
+            };
+            self.keys.push(key);
+            self.contacts.push(carried);
+        }
+        for (k, c) in old {
+            self.keys.push(k);
+            self.contacts.push(c);
+        }
+    }
+
+    /// One step of every pair (in parallel): whether it touches; a new contact made as the
+    /// general pipeline makes it (`contacts::new_contact`) with its birth accounted for; an
+    /// ended one's friction, elastic and shear energy accounted for; then the contact law
+    /// and the node loads of every touching pair, into `scratch.outcomes` (one per pair).
+    /// `dt` is the step just done (the contact law's and the births' step). Returns what the
+    /// births and ends moved the energy balance by, and the ended pairs' friction in
+    /// `ended_dissipation`.
+    pub(crate) fn update(
+        &mut self,
+        model: &Model,
+        dt: Real,
+        scratch: &mut PairScratch,
+        ended_dissipation: &mut Real,
+    ) -> BirthReport {
+        let p = &model.particles;
+        let k = Kinematics { pos: &p.pos, vel: &p.vel, ang_vel: &p.ang_vel };
+        scratch.outcomes.resize(self.keys.len(), PairOutcome::default());
+        self.keys
+            .par_iter()
+            .zip(self.contacts.par_iter_mut())
+            .zip(scratch.outcomes.par_iter_mut())
+            .for_each(|((key, slot), out)| *out = step_pair(model, &k, key, slot, dt));
+        let mut report = BirthReport::default();
+        scratch.fresh.clear();
+        for (n, o) in scratch.outcomes.iter().enumerate() {
+            if o.fresh {
+                scratch.fresh.push(n);
+            }
+            report.born_energy += o.born_energy;
+            report.released += o.released;
+            report.born_deep += u64::from(o.born_deep);
+            *ended_dissipation += o.ended_dissipation;
+        }
+        report
+    }
+
+    /// The node loads of the touching pair at `index` at the last update: body 1's (none for
+    /// a wall) and body 2's.
+    pub(crate) fn loads<'a>(
+        &self,
+        scratch: &'a PairScratch,
+        index: usize,
+    ) -> impl Iterator<Item = &'a NodeLoad> + 'a {
+        let first = !matches!(self.keys[index].0, Feature::Wall(_));
+        let loads = &scratch.outcomes[index].loads;
+        loads[usize::from(!first)..].iter()
+    }
+}
+
+/// One pair's step (see [`NeighbourList::update`]).
+fn step_pair(
+    model: &Model,
+    k: &Kinematics<'_>,
+    key: &ContactKey,
+    slot: &mut Option<PairContact>,
+    dt: Real,
+) -> PairOutcome {
+    let mut out = PairOutcome::default();
+    let touching = match *key {
+        (Feature::Particle(i), Feature::Particle(j)) => sphere_touching(model, i, j),
+        (Feature::Wall(w), Feature::Particle(i)) => wall_touching(model, w, i),
+        _ => None,
+    };
+    let (site1, site2) = sites(model, key);
+    match (touching, slot.as_ref()) {
+        (Some(t), None) => {
+            // a first touch (a free sphere's contact can be neither handed over nor split):
+            // on time or late, as `ContactPipeline::settle_births` says
+            let c = new_contact(model, &t);
+            let (_, _, g) = geometry_of(model, k, &site1, &site2, &c.state.normal);
+            let approach = -g.relative_velocity.dot(&g.normal);
+            let reach = site1.radius + site2.radius;
+            out.born_energy = birth_jump(&c.params, &c.state, &g, dt);
+            out.born_deep = g.overlap - approach * dt > 1e-12 * reach;
+            out.fresh = true;
+            *slot = Some(PairContact {
+                params: c.params,
+                state: c.state,
+                forces: ContactForces::default(),
+                point: c.point,
+            });
+        }
+        (None, Some(c)) => {
+            out.ended_dissipation = c.state.dissipated.total();
+            let (_, _, g) = geometry_of(model, k, &site1, &site2, &c.state.normal);
+            let now = g.overlap - c.state.overlap_offset;
+            // the spring leaves the balance: −½·F·δ_now (see `settle_births`)
+            let jump = -0.5 * c.state.normal_force * now;
+            if jump >= 0.0 {
+                out.born_energy = jump;
+            } else {
+                out.released = -jump;
+            }
+            if c.params.ks > 0.0 {
+                out.released += 0.5 * c.state.shear_force.norm_squared() / c.params.ks;
+            }
+            *slot = None;
+        }
+        _ => {}
+    }
+    if let Some(c) = slot.as_mut() {
+        let (vs1, vs2, g) = geometry_of(model, k, &site1, &site2, &c.state.normal);
+        let f = update_frictional_contact(
+            &c.params,
+            &mut c.state,
+            &ContactKinematics {
+                normal: g.normal,
+                overlap: g.overlap,
+                relative_velocity: g.relative_velocity,
+                spin_about_normal: g.spin_about_normal,
+            },
+            dt,
+        );
+        let p = &model.particles;
+        let l1 = distribute_force(&site1, &p.pos, &vs1.center, &g.point, &(-f.force_on_2));
+        let l2 = distribute_force(&site2, &p.pos, &vs2.center, &g.point, &f.force_on_2);
+        out.loads = [l1[0], l2[0]];
+        c.forces = f;
+        c.point = g.point;
+    }
+    out
+}
+
+/// Which list the next contact in key order comes from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Pick {
+    /// The general contacts' list, at this index.
+    General(usize),
+    /// The neighbour list, at this candidate index (a touching pair).
+    Pair(usize),
+}
+
+/// The contacts of both lists in key order: the general contacts (sorted by key) and the
+/// touching pairs of the neighbour list (sorted by key). The two never share a key.
+pub(crate) fn merged<'a>(
+    general: &'a [Contact],
+    pairs: &'a NeighbourList,
+) -> impl Iterator<Item = Pick> + 'a {
+    let mut g = 0;
+    let mut n = 0;
+    std::iter::from_fn(move || {
+        while n < pairs.keys.len() && pairs.contacts[n].is_none() {
+            n += 1;
+        }
+        match (general.get(g), pairs.keys.get(n)) {
+            (Some(c), Some(key)) if c.key() < *key => {
+                g += 1;
+                Some(Pick::General(g - 1))
+            }
+            (Some(_), None) => {
+                g += 1;
+                Some(Pick::General(g - 1))
+            }
+            (_, Some(_)) => {
+                n += 1;
+                Some(Pick::Pair(n - 1))
+            }
+            (None, None) => None,
+        }
+    })
+}
+
+/// The indices of `fresh_general` (into the general list) and `fresh_pairs` (into the
+/// neighbour list), both sorted by key, merged in key order.
+pub(crate) fn merged_fresh(
+    general: &[Contact],
+    fresh_general: &[usize],
+    pairs: &NeighbourList,
+    fresh_pairs: &[usize],
+) -> Vec<Pick> {
+    let mut out = Vec::with_capacity(fresh_general.len() + fresh_pairs.len());
+    let (mut a, mut b) = (0, 0);
+    while a < fresh_general.len() || b < fresh_pairs.len() {
+        let take_general = match (fresh_general.get(a), fresh_pairs.get(b)) {
+            (Some(&g), Some(&n)) => general[g].key() < pairs.keys[n],
+            (Some(_), None) => true,
+            _ => false,
+        };
+        if take_general {
+            out.push(Pick::General(fresh_general[a]));
+            a += 1;
+        } else {
+            out.push(Pick::Pair(fresh_pairs[b]));
+            b += 1;
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn contact(point: Real) -> PairContact {
+        PairContact {
+            params: FrictionalParams { kn: 1.0, ks: 0.5, tan_phi: 0.3 },
+            state: FrictionalContact::new(Vec3::z()),
+            forces: ContactForces::default(),
+            point: Vec3::repeat(point),
+        }
+    }
+
+    #[test]
+    fn a_rebuild_carries_the_touching_pairs_by_key_and_keeps_those_it_lost() {
+        let mut list = NeighbourList::default();
+        list.rebuild(&[(0, 1), (0, 2), (1, 2)], &[(0, 1)]);
+        assert_eq!(list.candidates(), 4);
+        list.contacts[1] = Some(contact(2.0)); // (0, 2)
+        list.contacts[3] = Some(contact(3.0)); // wall 0, particle 1
+        list.rebuild(&[(0, 2), (2, 3)], &[]);
+        let touching: Vec<_> = list.touching().map(|(k, c)| (*k, c.point.x)).collect();
+        assert_eq!(
+            touching,
+            vec![
+                ((Feature::Particle(0), Feature::Particle(2)), 2.0),
+                ((Feature::Wall(0), Feature::Particle(1)), 3.0)
+            ]
+        );
+        assert_eq!(list.candidates(), 3);
+        assert!(list.fits(4, 1) && !list.fits(3, 1) && !list.fits(4, 0));
+    }
+
+    #[test]
+    fn saved_and_compared_as_its_touching_pairs() {
+        let mut a = NeighbourList::default();
+        a.rebuild(&[(0, 1), (1, 2)], &[]);
+        a.contacts[1] = Some(contact(1.0));
+        let mut b = NeighbourList::default();
+        b.rebuild(&[(1, 2)], &[(0, 0)]);
+        b.contacts[0] = Some(contact(1.0));
+        assert_eq!(a, b);
+        let saved: Vec<(ContactKey, PairContact)> = a.clone().into();
+        assert_eq!(saved.len(), 1);
+        assert_eq!(NeighbourList::from(saved), b);
+    }
+}
