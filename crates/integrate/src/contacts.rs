@@ -8,7 +8,7 @@ use crate::collider::{Collider, NONE};
 pub(crate) use crate::contact::BirthReport;
 pub use crate::contact::Contact;
 use crate::contact::{birth_jump, geometry, material, new_contact, owner, wall_touching, Touching};
-use crate::neighbours::{merged, NeighbourList, PairScratch, Pick};
+use crate::neighbours::{merged, NeighbourList, PairScratch, Pick, Sink};
 use crate::prefilter::{hull, proven_apart, Hull};
 use flexdem_contact::{update_frictional_contact, ContactKinematics};
 use flexdem_elements::pairs::{self, Candidate, ConnectionRef, PFacetRef, SphereRef};
@@ -373,14 +373,7 @@ impl ContactPipeline {
             contacts.list.push(c);
         }
         self.fresh = fresh;
-        let mut report = self.settle_births(contacts, model, dt);
-        // the free spheres' contacts, in their neighbour list
-        let pairs =
-            contacts.pairs.update(model, dt, &mut self.pairs, &mut contacts.ended_dissipation);
-        report.born_energy += pairs.born_energy;
-        report.released += pairs.released;
-        report.born_deep += pairs.born_deep;
-        report
+        self.settle_births(contacts, model, dt)
     }
 
     /// What the contacts made at this detection inherit, so that no energy comes from a
@@ -534,8 +527,10 @@ impl ContactPipeline {
         report
     }
 
-    /// Updates every contact's forces (in parallel) and adds the node loads to `force` and
-    /// `torque` in contact order.
+    /// Updates every contact's forces (in parallel) and the free spheres' pairs (their
+    /// births and ends too, see `neighbours.rs`), and adds the node loads to `force` and
+    /// `torque` in key order. Returns what the pairs' births and ends moved the energy
+    /// balance by.
     pub(crate) fn apply(
         &mut self,
         contacts: &mut Contacts,
@@ -543,7 +538,7 @@ impl ContactPipeline {
         dt: Real,
         force: &mut [Vec3],
         torque: &mut [Vec3],
-    ) {
+    ) -> BirthReport {
         let p = &model.particles;
         let k = Kinematics { pos: &p.pos, vel: &p.vel, ang_vel: &p.ang_vel };
         self.loads.resize(
@@ -575,17 +570,38 @@ impl ContactPipeline {
             force[l.node as usize] += l.force;
             torque[l.node as usize] += l.torque;
         };
+        let general_loads = |n: usize| {
+            let (c, loads) = (&contacts.list[n], &self.loads[n]);
+            let (n1, n2) = (c.site1.node_count(), c.site2.node_count());
+            loads[..n1].iter().chain(&loads[3..3 + n2])
+        };
+        let ended = &mut contacts.ended_dissipation;
+        if rayon::current_num_threads() == 1 {
+            // one pass: each pair's loads added as soon as they are known, after the general
+            // contacts of smaller keys (the same sums, in the same order, as below)
+            let general = &contacts.list;
+            let mut g = 0;
+            let report =
+                contacts.pairs.update_in_order(model, dt, &mut self.pairs, ended, |e| match e {
+                    Sink::Before(key) => {
+                        while g < general.len() && general[g].key() < *key {
+                            general_loads(g).for_each(&mut add);
+                            g += 1;
+                        }
+                    }
+                    Sink::Load(l) => add(l),
+                });
+            (g..general.len()).for_each(|n| general_loads(n).for_each(&mut add));
+            return report;
+        }
+        let report = contacts.pairs.update(model, dt, &mut self.pairs, ended);
         for pick in merged(&contacts.list, &contacts.pairs) {
             match pick {
-                Pick::General(n) => {
-                    let (c, loads) = (&contacts.list[n], &self.loads[n]);
-                    let n1 = c.site1.node_count();
-                    let n2 = c.site2.node_count();
-                    loads[..n1].iter().chain(&loads[3..3 + n2]).for_each(&mut add);
-                }
+                Pick::General(n) => general_loads(n).for_each(&mut add),
                 Pick::Pair(n) => contacts.pairs.loads(&self.pairs, n).for_each(&mut add),
             }
         }
+        report
     }
 }
 

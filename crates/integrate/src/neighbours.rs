@@ -21,7 +21,7 @@ use flexdem_contact::{
     update_frictional_contact, ContactForces, ContactKinematics, FrictionalContact,
     FrictionalParams,
 };
-use flexdem_elements::virtual_sphere::{distribute_force, Feature, Kinematics, NodeLoad, Site};
+use flexdem_elements::virtual_sphere::{ContactGeometry, Feature, Kinematics, NodeLoad, Site};
 use flexdem_elements::Model;
 use flexdem_geom::{Real, Vec3};
 use rayon::prelude::*;
@@ -275,6 +275,39 @@ impl NeighbourList {
         report
     }
 
+    /// [`NeighbourList::update`] in one pass on this thread, giving `sink` each touching
+    /// pair's key (`Sink::Before`), then its node loads (`Sink::Load`), in key order: the
+    /// loads are summed as they come (no buffer), with the same results.
+    pub(crate) fn update_in_order(
+        &mut self,
+        model: &Model,
+        dt: Real,
+        scratch: &mut PairScratch,
+        ended_dissipation: &mut Real,
+        mut sink: impl FnMut(Sink<'_>),
+    ) -> BirthReport {
+        let p = &model.particles;
+        let k = Kinematics { pos: &p.pos, vel: &p.vel, ang_vel: &p.ang_vel };
+        let mut report = BirthReport::default();
+        scratch.fresh.clear();
+        for (n, (key, slot)) in self.keys.iter().zip(self.contacts.iter_mut()).enumerate() {
+            let o = step_pair(model, &k, key, slot, dt);
+            if o.fresh {
+                scratch.fresh.push(n);
+            }
+            report.born_energy += o.born_energy;
+            report.released += o.released;
+            report.born_deep += u64::from(o.born_deep);
+            *ended_dissipation += o.ended_dissipation;
+            if slot.is_some() {
+                sink(Sink::Before(key));
+                let first = usize::from(matches!(key.0, Feature::Wall(_)));
+                o.loads[first..].iter().for_each(|l| sink(Sink::Load(l)));
+            }
+        }
+        report
+    }
+
     /// The node loads of the touching pair at `index` at the last update: body 1's (none for
     /// a wall) and body 2's.
     pub(crate) fn loads<'a>(
@@ -298,7 +331,17 @@ fn step_pair(
 ) -> PairOutcome {
     let mut out = PairOutcome::default();
     let touching = match *key {
-        (Feature::Particle(i), Feature::Particle(j)) => sphere_touching(model, i, j),
+        (Feature::Particle(i), Feature::Particle(j)) => {
+            // most candidates do not touch: a conservative distance test first (the exact
+            // one is `r_i + r_j − |d| > 0`)
+            let (pos, r) = (&model.particles.pos, &model.particles.radius);
+            let reach = r[i as usize] + r[j as usize];
+            let d2 = (pos[j as usize] - pos[i as usize]).norm_squared();
+            if slot.is_none() && d2 > reach * reach * (1.0 + 1e-9) {
+                return out;
+            }
+            sphere_touching(model, i, j)
+        }
         (Feature::Wall(w), Feature::Particle(i)) => wall_touching(model, w, i),
         _ => None,
     };
@@ -340,7 +383,22 @@ fn step_pair(
         _ => {}
     }
     if let Some(c) = slot.as_mut() {
-        let (vs1, vs2, g) = geometry_of(model, k, &site1, &site2, &c.state.normal);
+        let p = &model.particles;
+        let (g, center1, center2) = match *key {
+            (Feature::Particle(i), Feature::Particle(j)) => {
+                let (i, j) = (i as usize, j as usize);
+                sphere_geometry(p, i, j, &c.state.normal)
+                    .map(|g| (g, p.pos[i], p.pos[j]))
+                    .unwrap_or_else(|| {
+                        let (vs1, vs2, g) = geometry_of(model, k, &site1, &site2, &c.state.normal);
+                        (g, vs1.center, vs2.center)
+                    })
+            }
+            _ => {
+                let (vs1, vs2, g) = geometry_of(model, k, &site1, &site2, &c.state.normal);
+                (g, vs1.center, vs2.center)
+            }
+        };
         let f = update_frictional_contact(
             &c.params,
             &mut c.state,
@@ -352,14 +410,67 @@ fn step_pair(
             },
             dt,
         );
-        let p = &model.particles;
-        let l1 = distribute_force(&site1, &p.pos, &vs1.center, &g.point, &(-f.force_on_2));
-        let l2 = distribute_force(&site2, &p.pos, &vs2.center, &g.point, &f.force_on_2);
-        out.loads = [l1[0], l2[0]];
+        // a particle's site takes the whole force, and its moment about the centre
+        // (`distribute_force` with the weight 1)
+        let on_1 = -f.force_on_2;
+        out.loads = [
+            NodeLoad {
+                node: site1.nodes[0],
+                force: on_1,
+                torque: (g.point - center1).cross(&on_1),
+            },
+            NodeLoad {
+                node: site2.nodes[0],
+                force: f.force_on_2,
+                torque: (g.point - center2).cross(&f.force_on_2),
+            },
+        ];
         c.forces = f;
         c.point = g.point;
     }
     out
+}
+
+/// What [`NeighbourList::update_in_order`] hands on: the key of the next touching pair (the
+/// contacts of smaller keys come first), then its node loads.
+pub(crate) enum Sink<'a> {
+    /// The next touching pair's key.
+    Before(&'a ContactKey),
+    /// One of its node loads.
+    Load(&'a NodeLoad),
+}
+
+/// The geometry of touching free spheres `i` and `j` whose last normal was
+/// `previous_normal`: `contact_geometry_crossing` of their centres, the same operations in the
+/// same order, without the virtual spheres; None when the centres (nearly) coincide or have
+/// crossed (`d·n₀ ≤ 0`), where the general function decides the normal.
+fn sphere_geometry(
+    p: &flexdem_elements::Particles,
+    i: usize,
+    j: usize,
+    previous_normal: &Vec3,
+) -> Option<ContactGeometry> {
+    let (c1, c2) = (p.pos[i], p.pos[j]);
+    let (r1, r2) = (p.radius[i], p.radius[j]);
+    let d = c2 - c1;
+    let dist = d.norm();
+    let scale = r1 + r2 + c1.abs().max() + c2.abs().max();
+    if !(dist > 1e-14 * scale && d.dot(previous_normal) > 0.0) {
+        return None;
+    }
+    let normal = d / dist;
+    let overlap = r1 + r2 - dist;
+    let point = c1 + normal * (r1 - 0.5 * overlap);
+    let (w1, w2) = (p.ang_vel[i], p.ang_vel[j]);
+    let v1 = p.vel[i] + w1.cross(&(point - c1));
+    let v2 = p.vel[j] + w2.cross(&(point - c2));
+    Some(ContactGeometry {
+        normal,
+        overlap,
+        point,
+        relative_velocity: v2 - v1,
+        spin_about_normal: 0.5 * normal.dot(&(w1 + w2)),
+    })
 }
 
 /// Which list the next contact in key order comes from.

@@ -144,15 +144,18 @@ impl Simulation {
         self.state.energy.terms.contact_births += births.born_energy;
         self.state.energy.terms.contact_releases += births.released;
         self.state.contacts.born_deep += births.born_deep;
-        let appeared = self.state.contacts.len() > before;
-        self.account_new_contacts();
-        self.pipeline.contacts.apply(
+        let pairs = self.pipeline.contacts.apply(
             &mut self.state.contacts,
             &self.state.model,
             dt,
             &mut self.pipeline.force,
             &mut self.pipeline.torque,
         );
+        self.state.energy.terms.contact_births += pairs.born_energy;
+        self.state.energy.terms.contact_releases += pairs.released;
+        self.state.contacts.born_deep += pairs.born_deep;
+        let appeared = self.state.contacts.len() > before;
+        self.account_new_contacts();
         self.pipeline.timers.stop(Stage::Contacts, t0);
         appeared
     }

@@ -284,7 +284,7 @@ fn after_isotropic_consolidation_the_grains_stress_is_the_confining_pressure() {
         radius: 0.04,
         length: 0.12,
     };
-    let sigma = love_weber_stress(sim.model(), sim.contacts(), &region, Some(state.volume));
+    let sigma = love_weber_stress(sim.model(), &sim.contacts(), &region, Some(state.volume));
     let p = mean_stress(&sigma);
     // the platen's stress over the sample's cross-section (the servo follows it: `area_of`)
     // and the grains' mean stress, each within 3 % of the confining pressure
