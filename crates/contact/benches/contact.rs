@@ -49,7 +49,7 @@ fn material() -> Material {
 
 fn frictional(c: &mut Criterion) {
     let mut rng = Rng(42);
-    let p = FrictionalParams { kn: 1e6, ks: 3e5, tan_phi: 0.5 };
+    let p = FrictionalParams { kn: 1e6, ks: 3e5, tan_phi: 0.5, cn: 0.0, ct: 0.0 };
     let mut states: Vec<FrictionalContact> = Vec::with_capacity(POOL);
     let mut kins: Vec<ContactKinematics> = Vec::with_capacity(POOL);
     for _ in 0..POOL {

@@ -1,5 +1,6 @@
-//! Energy terms of one contact or link (model.md §6): elastic energy stored in the springs of
-//! eq 1, 2, 5, 6 and the energy dissipated by slip, plastic caps (eq 7) and breakage.
+//! Energy terms of one contact or link (model.md §3, §7): elastic energy stored in the springs
+//! of eq 1, 2, 5, 6 and the energy dissipated by slip, plastic caps (eq 7), breakage and the
+//! contact dashpots.
 
 use flexdem_geom::{Real, Vec3};
 use serde::{Deserialize, Serialize};
@@ -15,12 +16,15 @@ pub struct Dissipation {
     pub plastic: Real,
     /// Elastic energy released when a fragile link breaks or loses cohesion.
     pub breakage: Real,
+    /// The dashpots of a damped contact (model.md §7): `−F_d·v_rel·dt` per update, `F_d` the
+    /// dashpots' force as applied and `v_rel` the relative velocity the update was given.
+    pub viscous: Real,
 }
 
 impl Dissipation {
-    /// Sum of the three terms.
+    /// Sum of the four terms.
     pub fn total(&self) -> Real {
-        self.friction + self.plastic + self.breakage
+        self.friction + self.plastic + self.breakage + self.viscous
     }
 }
 
@@ -29,6 +33,7 @@ impl AddAssign for Dissipation {
         self.friction += o.friction;
         self.plastic += o.plastic;
         self.breakage += o.breakage;
+        self.viscous += o.viscous;
     }
 }
 
@@ -72,8 +77,18 @@ pub fn cap_dissipation(trial: Real, capped: Real, k: Real) -> Real {
 /// too coarse to follow the reversal, and counts as no dissipation.
 #[inline]
 pub fn slip_dissipation(old: &Vec3, trial: &Vec3, capped: &Vec3, k: Real) -> Real {
+    slip_energy(old, trial, capped, k).max(0.0)
+}
+
+/// [`slip_dissipation`] without its floor at 0: `½·(F_old + F_capped)·(F_trial − F_capped)/k`,
+/// the energy the spring loses in the slip, exactly (0 when k ≤ 0). A damped contact uses it
+/// (model.md §7): when its tangential dashpot alone exceeds the Coulomb limit, the spring is
+/// set against the slip (LAMMPS's rescaling) and takes energy, which this counts as a negative
+/// friction dissipation so that the balance closes.
+#[inline]
+pub fn slip_energy(old: &Vec3, trial: &Vec3, capped: &Vec3, k: Real) -> Real {
     if k > 0.0 {
-        (0.5 * (old + capped).dot(&(trial - capped)) / k).max(0.0)
+        0.5 * (old + capped).dot(&(trial - capped)) / k
     } else {
         0.0
     }
@@ -111,6 +126,14 @@ mod tests {
         );
         assert_eq!(d, 0.0);
         assert_eq!(slip_dissipation(&Vec3::x(), &Vec3::x(), &Vec3::x(), 0.0), 0.0);
+        // ... which slip_energy keeps: ½·(5 − 3)·(−15 + 3)/10
+        let e = slip_energy(
+            &Vec3::new(5.0, 0.0, 0.0),
+            &Vec3::new(-15.0, 0.0, 0.0),
+            &Vec3::new(-3.0, 0.0, 0.0),
+            k,
+        );
+        assert!((e + 1.2).abs() < 1e-15, "{e}");
     }
 
     #[test]
@@ -121,7 +144,7 @@ mod tests {
         assert_eq!(cap_dissipation(5.0, 3.0, 2.0), 3.0);
         assert_eq!(cap_dissipation(3.0, 3.0, 2.0), 0.0);
         let mut d = Dissipation { friction: 1.0, ..Default::default() };
-        d += Dissipation { friction: 1.0, plastic: 2.0, breakage: 3.0 };
-        assert_eq!(d.total(), 7.0);
+        d += Dissipation { friction: 1.0, plastic: 2.0, breakage: 3.0, viscous: 4.0 };
+        assert_eq!(d.total(), 11.0);
     }
 }

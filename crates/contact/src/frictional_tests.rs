@@ -6,7 +6,7 @@ use nalgebra::UnitQuaternion;
 use proptest::prelude::*;
 
 fn params(kn: Real, shear_ratio: Real, tan_phi: Real) -> FrictionalParams {
-    FrictionalParams { kn, ks: kn * shear_ratio, tan_phi }
+    FrictionalParams { kn, ks: kn * shear_ratio, tan_phi, cn: 0.0, ct: 0.0 }
 }
 
 /// Two spheres, body 1 fixed at the origin, body 2 centred at `x2`, radii summing to `s`,
@@ -263,5 +263,205 @@ proptest! {
         let e_scale = 1e6 * 1e-6;
         prop_assert!(work >= de - 1e-6 * e_scale, "work {work} < dE {de}");
         prop_assert!(work <= de + diss + 1e-6 * e_scale, "work {work} > dE {de} + D {diss}");
+    }
+}
+
+/// The law as it was before the dashpots (copied verbatim): with cn = ct = 0 the law must give
+/// exactly this, bit for bit.
+fn undamped_reference(
+    params: &FrictionalParams,
+    state: &mut FrictionalContact,
+    kin: &ContactKinematics,
+    dt: Real,
+) -> ContactForces {
+    use crate::energy::{slip_dissipation, spring_energy, Dissipation};
+    use crate::rotation::transport_tangent;
+    let n = kin.normal;
+    let overlap = kin.overlap - state.overlap_offset;
+    if overlap.is_nan() || overlap <= 0.0 {
+        state.shear_force = Vec3::zeros();
+        state.normal = n;
+        state.normal_force = 0.0;
+        return ContactForces::default();
+    }
+    let rotated = transport_tangent(state.shear_force, state.normal, n, kin.spin_about_normal * dt);
+    let v = kin.relative_velocity;
+    let us_dot = v - n * n.dot(&v);
+    let trial = rotated - us_dot * (params.ks * dt);
+    let fn_ = params.kn * overlap;
+    let limit = (fn_ * params.tan_phi).max(0.0);
+    let trial_mag = trial.norm();
+    let (fs, sliding, friction) = if trial_mag > limit {
+        let fs = if trial_mag > 0.0 { trial * (limit / trial_mag) } else { Vec3::zeros() };
+        (fs, true, slip_dissipation(&rotated, &trial, &fs, params.ks))
+    } else {
+        (trial, false, 0.0)
+    };
+    state.shear_force = fs;
+    state.normal = n;
+    state.normal_force = fn_;
+    let dissipated = Dissipation { friction, ..Default::default() };
+    state.dissipated += dissipated;
+    ContactForces {
+        normal_force: fn_,
+        shear_force: fs,
+        force_on_2: n * fn_ + fs,
+        dashpot_force: Vec3::zeros(),
+        elastic_energy: spring_energy(fn_, params.kn) + spring_energy(fs.norm(), params.ks),
+        dissipated,
+        sliding,
+    }
+}
+
+fn damped(kn: Real, shear_ratio: Real, tan_phi: Real, cn: Real, ct: Real) -> FrictionalParams {
+    FrictionalParams { cn, ct, ..params(kn, shear_ratio, tan_phi) }
+}
+
+#[test]
+fn the_normal_dashpot_pushes_on_approach_and_never_pulls() {
+    let (kn, cn, overlap, dt) = (1e6, 50.0, 1e-4, 1e-5);
+    let p = damped(kn, 0.5, 0.5, cn, 0.0);
+    let kin = |vn: Real| ContactKinematics {
+        normal: Vec3::z(),
+        overlap,
+        relative_velocity: Vec3::z() * vn,
+        spin_about_normal: 0.0,
+    };
+    // approaching at 1 m/s: kn·δ + cn·1 = 100 + 50
+    let mut st = FrictionalContact::new(Vec3::z());
+    let f = update_frictional_contact(&p, &mut st, &kin(-1.0), dt);
+    assert!((f.normal_force - 150.0).abs() < 1e-9, "{f:?}");
+    assert!((f.dashpot_force - Vec3::z() * 50.0).norm() < 1e-9);
+    assert!((f.dissipated.viscous - 50.0 * dt).abs() < 1e-15);
+    assert_eq!(st.normal_force, kn * overlap, "the state keeps the spring's force");
+    // separating at 1 m/s: 100 − 50
+    let f = update_frictional_contact(&p, &mut st, &kin(1.0), dt);
+    assert!((f.normal_force - 50.0).abs() < 1e-9);
+    // separating at 4 m/s: 100 − 200 < 0 is clamped; the dashpot applies −kn·δ only
+    let f = update_frictional_contact(&p, &mut st, &kin(4.0), dt);
+    assert_eq!(f.normal_force, 0.0);
+    assert_eq!(f.force_on_2, Vec3::zeros());
+    assert!((f.dashpot_force + Vec3::z() * 100.0).norm() < 1e-9);
+    assert!((f.dissipated.viscous - 100.0 * 4.0 * dt).abs() < 1e-15);
+    // the spring still holds its energy (the dashpot takes it as the overlap closes)
+    assert!((f.elastic_energy - 0.5 * kn * overlap * overlap).abs() < 1e-15);
+}
+
+#[test]
+fn sliding_with_a_dashpot_caps_spring_plus_dashpot() {
+    // Steady sliding at v: the tangential force is the Coulomb limit, the spring holds
+    // limit − ct·v against it, and friction plus dashpot dissipate limit·v·dt per step (the
+    // friction term negative when the dashpot alone is above the limit).
+    let (kn, overlap, tan_phi, dt, v) = (1e6, 1e-3, 0.3, 1e-5, 0.5);
+    let limit = kn * overlap * tan_phi; // 300 N
+    for ct in [200.0, 900.0] {
+        let p = damped(kn, 0.5, tan_phi, 0.0, ct);
+        let mut st = FrictionalContact::new(Vec3::z());
+        let kin = ContactKinematics {
+            normal: Vec3::z(),
+            overlap,
+            relative_velocity: Vec3::x() * v,
+            spin_about_normal: 0.0,
+        };
+        let mut f = ContactForces::default();
+        for _ in 0..100 {
+            f = update_frictional_contact(&p, &mut st, &kin, dt);
+        }
+        assert!(f.sliding);
+        assert!((f.shear_force + Vec3::x() * limit).norm() < 1e-9, "{ct}: {f:?}");
+        assert!((st.shear_force - Vec3::x() * (ct * v - limit)).norm() < 1e-9, "{ct}");
+        assert!((f.dashpot_force + Vec3::x() * ct * v).norm() < 1e-9);
+        let d = f.dissipated;
+        assert!((d.viscous - ct * v * v * dt).abs() < 1e-12, "{ct}: {d:?}");
+        assert!((d.friction - (limit - ct * v) * v * dt).abs() < 1e-12, "{ct}: {d:?}");
+        assert!((d.friction + d.viscous - limit * v * dt).abs() < 1e-12);
+        let spring = (ct * v - limit).abs();
+        let e = 0.5 * (kn * overlap).powi(2) / kn + 0.5 * spring * spring / (0.5 * kn);
+        assert!((f.elastic_energy - e).abs() < 1e-9 * e);
+    }
+}
+
+#[test]
+fn sticking_with_a_dashpot_adds_it_to_the_spring() {
+    let p = damped(1e6, 0.5, 10.0, 0.0, 20.0);
+    let mut st = FrictionalContact::new(Vec3::z());
+    let kin = ContactKinematics {
+        normal: Vec3::z(),
+        overlap: 1e-3,
+        relative_velocity: Vec3::new(2.0, 0.0, 0.0),
+        spin_about_normal: 0.0,
+    };
+    let f = update_frictional_contact(&p, &mut st, &kin, 1e-4);
+    // spring −ks·u̇s·dt = −100, dashpot −ct·u̇s = −40
+    assert!(!f.sliding);
+    assert!((st.shear_force + Vec3::x() * 100.0).norm() < 1e-9);
+    assert!((f.shear_force + Vec3::x() * 140.0).norm() < 1e-9);
+    assert_eq!(f.dissipated.friction, 0.0);
+    assert!((f.dissipated.viscous - 40.0 * 2.0 * 1e-4).abs() < 1e-15);
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    #[test]
+    fn without_dashpots_the_law_is_bit_identical_to_the_undamped_one(
+        kn in log_uniform(1e2, 1e9),
+        ratio in 0.0..1.0_f64,
+        tan_phi in 0.0..2.0_f64,
+        n0 in unit_vec3(),
+        steps in prop::collection::vec(
+            (unit_vec3(), 0.0..0.3_f64, -1e-3..1e-2_f64, vec3(10.0), -50.0..50.0_f64,
+             log_uniform(1e-7, 1e-2)),
+            1..20),
+    ) {
+        let p = params(kn, ratio, tan_phi);
+        prop_assert!(!p.is_damped());
+        let (mut a, mut b) = (FrictionalContact::new(n0), FrictionalContact::new(n0));
+        let mut n = n0;
+        for (dir, tilt, overlap, v, spin, dt) in steps {
+            n = (n + dir * tilt).normalize();
+            let kin = ContactKinematics {
+                normal: n, overlap, relative_velocity: v, spin_about_normal: spin,
+            };
+            let fa = update_frictional_contact(&p, &mut a, &kin, dt);
+            let fb = undamped_reference(&p, &mut b, &kin, dt);
+            // Debug prints every float exactly (and −0 as −0): equal strings are equal bits
+            prop_assert_eq!(format!("{fa:?}"), format!("{fb:?}"));
+            prop_assert_eq!(format!("{a:?}"), format!("{b:?}"));
+        }
+    }
+
+    #[test]
+    fn damped_contacts_keep_coulomb_and_the_dashpots_dissipate(
+        kn in log_uniform(1e2, 1e9),
+        ratio in 0.0..1.0_f64,
+        tan_phi in 0.0..2.0_f64,
+        zeta in (0.0..1.5_f64, 0.0..1.5_f64),
+        n0 in unit_vec3(),
+        steps in prop::collection::vec(
+            (unit_vec3(), 0.0..0.3_f64, -1e-3..1e-2_f64, vec3(10.0), -50.0..50.0_f64,
+             log_uniform(1e-7, 1e-2)),
+            1..20),
+    ) {
+        // dashpots of damping ratio up to 1.5 on a 1 kg pair
+        let p = damped(kn, ratio, tan_phi, 2.0 * zeta.0 * kn.sqrt(), 2.0 * zeta.1 * (kn * ratio).sqrt());
+        let mut st = FrictionalContact::new(n0);
+        let mut n = n0;
+        for (dir, tilt, overlap, v, spin, dt) in steps {
+            n = (n + dir * tilt).normalize();
+            let kin = ContactKinematics {
+                normal: n, overlap, relative_velocity: v, spin_about_normal: spin,
+            };
+            let f = update_frictional_contact(&p, &mut st, &kin, dt);
+            let scale = f.force_on_2.norm() + f.dashpot_force.norm() + kn * overlap.abs() + 1e-300;
+            prop_assert!(f.normal_force >= 0.0);
+            prop_assert!(f.shear_force.norm() <= f.normal_force * tan_phi * (1.0 + 1e-12) + 1e-300);
+            prop_assert!(f.dissipated.viscous >= -1e-12 * scale * v.norm() * dt);
+            // the force is the springs' plus the dashpots'
+            let springs = n * st.normal_force + st.shear_force;
+            prop_assert!((springs + f.dashpot_force - f.force_on_2).norm() <= 1e-12 * scale);
+            let e = spring_energy(st.normal_force, kn) + spring_energy(st.shear_force.norm(), p.ks);
+            prop_assert!((f.elastic_energy - e).abs() <= 1e-12 * e.max(1e-300));
+        }
     }
 }

@@ -1,6 +1,7 @@
 //! The flexdem contact law (paper §2–3): materials, stiffnesses (eq 3, 4, 8), the force and
 //! moment update of one contact or beam link with plastic limits and breakage (eq 1–2, 5–7),
-//! and energy terms. Pure functions over plain contact state; the engine only calls them.
+//! contact dashpots (model.md §7), and energy terms. Pure functions over plain contact state;
+//! the engine only calls them.
 //!
 //! Conventions (see `docs/architecture.md`):
 //! - the normal n points **from body 1 to body 2**, the overlap δ > 0 when touching;
@@ -12,8 +13,9 @@
 //!
 //! Modules: [`material`] (materials and validation), [`stiffness`] (eq 3, 4, 8), [`strength`]
 //! (eq 7), [`rotation`] (exact shear transport), [`frictional`] (non-cohesive contacts),
-//! [`link`] (beam links), [`energy`].
+//! [`damping`] (their dashpots), [`link`] (beam links), [`energy`].
 
+pub mod damping;
 pub mod energy;
 pub mod frictional;
 pub mod link;
@@ -25,7 +27,11 @@ pub mod strength;
 #[cfg(test)]
 mod test_support;
 
-pub use energy::{cap_dissipation, slip_dissipation, spring_energy, Dissipation};
+pub use damping::{
+    contact_dashpots, damping_ratio, effective_mass, material_dashpots, restitution_of_ratio,
+    Dashpots,
+};
+pub use energy::{cap_dissipation, slip_dissipation, slip_energy, spring_energy, Dissipation};
 pub use frictional::{
     update_frictional_contact, ContactForces, ContactKinematics, FrictionalContact,
     FrictionalParams,
@@ -34,7 +40,7 @@ pub use link::{
     update_link, LinkEvent, LinkForces, LinkKinematics, LinkKinematicsMode, LinkParams, LinkState,
     LinkStatus,
 };
-pub use material::{effective_strength, FailureMode, Material, MaterialError};
+pub use material::{effective_strength, ContactDamping, FailureMode, Material, MaterialError};
 pub use rotation::{rotate_about_axis, rotate_between, rotation_vector, transport_tangent};
 pub use stiffness::{
     beam_link_stiffness, contact_stiffness, friction_coefficient, ContactStiffness, LinkStiffness,

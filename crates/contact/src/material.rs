@@ -17,6 +17,27 @@ pub enum FailureMode {
     Plastic,
 }
 
+/// Viscous contact damping of a material (model.md §7): how the dashpots of its contacts are
+/// set. `None` (the default) is the purely elastic–frictional contact of the paper.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, Default)]
+pub enum ContactDamping {
+    /// No dashpot.
+    #[default]
+    None,
+    /// A coefficient of restitution e, 0 < e ≤ 1: the normal damping ratio
+    /// ζ = −ln e/√(π² + ln² e) of a linear spring–dashpot, cn = 2ζ·√(m_eff·kn) and
+    /// ct = 2ζ·√(m_eff·ks) (the same ratio, as LIGGGHTS does).
+    Restitution(Real),
+    /// Damping rates per unit mass (1/s), LAMMPS `gran/hooke` style: cn = m_eff·γn,
+    /// ct = m_eff·γt.
+    Viscous {
+        /// γn (1/s), finite and ≥ 0.
+        gamma_n: Real,
+        /// γt (1/s), finite and ≥ 0.
+        gamma_t: Real,
+    },
+}
+
 /// A material (paper §2–3).
 ///
 /// - `young` E (Pa) and `poisson` ν, a **true** Poisson ratio: it gives G = E/(2(1+ν)) for the
@@ -28,6 +49,7 @@ pub enum FailureMode {
 ///   infinite, which is what YADE's documentation promises).
 /// - `failure`: fragile or plastic behaviour at the limits.
 /// - `moments`: whether cohesive links carry twisting and bending moments (eq 5, 6).
+/// - `damping`: the viscous damping of its contacts ([`ContactDamping`], model.md §7).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Material {
     /// Young's modulus E (Pa), finite and > 0.
@@ -48,6 +70,8 @@ pub struct Material {
     pub failure: FailureMode,
     /// Cohesive links carry twisting and bending moments (eq 5, 6).
     pub moments: bool,
+    /// Viscous damping of its contacts (model.md §7); [`ContactDamping::None`] by default.
+    pub damping: ContactDamping,
 }
 
 /// A material value that does not make sense. Each message names the field, the value given
@@ -82,6 +106,17 @@ pub enum MaterialError {
         "material field `shear_strength` is {0}: expected a number (None or negative = unbreakable)"
     )]
     ShearStrength(Real),
+    /// Coefficient of restitution outside (0, 1] (or NaN).
+    #[error(
+        "material field `restitution` (coefficient of restitution) is {0}: expected 0 < restitution <= 1"
+    )]
+    Restitution(Real),
+    /// Negative or non-finite normal damping rate.
+    #[error("material field `gamma_n` (normal damping per unit mass) is {0}: expected a finite value >= 0 (1/s)")]
+    GammaN(Real),
+    /// Negative or non-finite tangential damping rate.
+    #[error("material field `gamma_t` (tangential damping per unit mass) is {0}: expected a finite value >= 0 (1/s)")]
+    GammaT(Real),
 }
 
 impl Material {
@@ -104,6 +139,7 @@ impl Material {
             shear_strength: None,
             failure: FailureMode::Fragile,
             moments: true,
+            damping: ContactDamping::None,
         }
         .checked()
     }
@@ -138,13 +174,20 @@ impl Material {
         self
     }
 
+    /// Sets the viscous damping of its contacts (unchecked until [`Material::checked`]).
+    pub fn with_damping(mut self, damping: ContactDamping) -> Self {
+        self.damping = damping;
+        self
+    }
+
     /// `self` if [`Material::validate`] passes.
     pub fn checked(self) -> Result<Self, MaterialError> {
         self.validate().map(|()| self)
     }
 
     /// Checks every field: E > 0 finite, −1 < ν ≤ 0.5, shear_ratio ≥ 0 finite, ρ > 0 finite,
-    /// 0 ≤ φ < π/2, strengths not NaN. Reports the first bad field in declaration order.
+    /// 0 ≤ φ < π/2, strengths not NaN, a restitution in (0, 1], damping rates finite and
+    /// ≥ 0. Reports the first bad field in declaration order.
     pub fn validate(&self) -> Result<(), MaterialError> {
         let ok = |c: bool, e: MaterialError| if c { Ok(()) } else { Err(e) };
         ok(self.young.is_finite() && self.young > 0.0, MaterialError::Young(self.young))?;
@@ -163,6 +206,17 @@ impl Material {
         }
         if let Some(s) = self.shear_strength {
             ok(!s.is_nan(), MaterialError::ShearStrength(s))?;
+        }
+        let rate = |g: Real| g.is_finite() && g >= 0.0;
+        match self.damping {
+            ContactDamping::None => {}
+            ContactDamping::Restitution(e) => {
+                ok(e > 0.0 && e <= 1.0, MaterialError::Restitution(e))?;
+            }
+            ContactDamping::Viscous { gamma_n, gamma_t } => {
+                ok(rate(gamma_n), MaterialError::GammaN(gamma_n))?;
+                ok(rate(gamma_t), MaterialError::GammaT(gamma_t))?;
+            }
         }
         Ok(())
     }
@@ -203,6 +257,9 @@ mod tests {
         assert_eq!(m.tensile_strength, None);
         assert_eq!(m.failure, FailureMode::Fragile);
         assert!(m.moments);
+        assert_eq!(m.damping, ContactDamping::None);
+        let e1 = m.with_damping(ContactDamping::Restitution(1.0));
+        assert!(e1.validate().is_ok(), "e = 1 is an elastic dashpot-free contact");
         assert!((m.shear_modulus() - 210e9 / 2.6).abs() < 1.0);
     }
 
@@ -239,6 +296,26 @@ mod tests {
                 MaterialError::FrictionAngle(-0.1),
                 "`friction_angle`",
             ),
+            (
+                m.with_damping(ContactDamping::Restitution(0.0)),
+                MaterialError::Restitution(0.0),
+                "`restitution`",
+            ),
+            (
+                m.with_damping(ContactDamping::Restitution(1.5)),
+                MaterialError::Restitution(1.5),
+                "0 < restitution <= 1",
+            ),
+            (
+                m.with_damping(ContactDamping::Viscous { gamma_n: -1.0, gamma_t: 0.0 }),
+                MaterialError::GammaN(-1.0),
+                "`gamma_n`",
+            ),
+            (
+                m.with_damping(ContactDamping::Viscous { gamma_n: 1.0, gamma_t: Real::INFINITY }),
+                MaterialError::GammaT(Real::INFINITY),
+                "`gamma_t`",
+            ),
         ];
         for (bad, err, needle) in cases {
             assert_eq!(bad.validate(), Err(err));
@@ -259,6 +336,9 @@ mod tests {
             Material { friction_angle: nan, ..m },
             m.with_tensile_strength(Some(nan)),
             m.with_shear_strength(Some(nan)),
+            m.with_damping(ContactDamping::Restitution(nan)),
+            m.with_damping(ContactDamping::Viscous { gamma_n: nan, gamma_t: 0.0 }),
+            m.with_damping(ContactDamping::Viscous { gamma_n: 0.0, gamma_t: nan }),
         ];
         let fields = [
             "`young`",
@@ -268,6 +348,9 @@ mod tests {
             "`friction_angle`",
             "`tensile_strength`",
             "`shear_strength`",
+            "`restitution`",
+            "`gamma_n`",
+            "`gamma_t`",
         ];
         for (bad, field) in bads.into_iter().zip(fields) {
             let msg = err_msg(bad);

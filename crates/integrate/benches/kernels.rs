@@ -92,7 +92,8 @@ fn contact_step(
 fn kernels(crit: &mut Criterion) {
     let mut rng = Rng(0x9E37_79B9_7F4A_7C15);
     let m = Material::new(1e8, 0.3, 2600.0, 0.5).unwrap();
-    let params = FrictionalParams::from_materials(&m, 0.1, &m, 0.1);
+    // the material has no damping: the effective mass (here two 0.1 m spheres) makes no dashpot
+    let params = FrictionalParams::from_materials(&m, 0.1, &m, 0.1, 5.4);
     let (r, rs) = (0.1, 0.3);
     // pair builders: (name, closure producing the candidate from a scene)
     type Maker = fn(&Scene, f64, f64) -> Candidate;

@@ -3,7 +3,10 @@
 //! balance by. Shared by the general pipeline (`contacts.rs`) and the free spheres' neighbour
 //! list (`neighbours.rs`).
 
-use flexdem_contact::{ContactForces, FrictionalContact, FrictionalParams};
+use crate::dashpots::site_mass;
+use flexdem_contact::{
+    effective_mass, ContactDamping, ContactForces, FrictionalContact, FrictionalParams,
+};
 use flexdem_elements::pairs::{self, Candidate, SphereRef};
 use flexdem_elements::touching::Element;
 use flexdem_elements::virtual_sphere::{
@@ -25,7 +28,7 @@ pub struct Contact {
     pub site2: Site,
     /// Owners of the two sites (a free sphere, a structure or a wall), for handovers.
     pub owners: (u64, u64),
-    /// Stiffnesses and friction.
+    /// Stiffnesses, friction and dashpots.
     pub params: FrictionalParams,
     /// Shear force, last normal, dissipation.
     pub state: FrictionalContact,
@@ -152,11 +155,18 @@ pub(crate) fn new_contact(model: &Model, t: &Touching) -> Contact {
         _ => (c.site1.radius, c.site2.radius),
     };
     let normal = birth_normal(model, c);
+    // the pair's effective mass, for the dashpots (model.md §7)
+    let p = &model.particles;
+    let m_eff = if m1.damping == ContactDamping::None && m2.damping == ContactDamping::None {
+        Real::INFINITY
+    } else {
+        effective_mass(site_mass(&c.site1, p), site_mass(&c.site2, p))
+    };
     Contact {
         site1: c.site1,
         site2: c.site2,
         owners: t.owners,
-        params: FrictionalParams::from_materials(m1, r1, m2, r2),
+        params: FrictionalParams::from_materials(m1, r1, m2, r2, m_eff),
         state: FrictionalContact::new(normal),
         forces: ContactForces::default(),
         point: c.center1 + normal * c.site1.radius,

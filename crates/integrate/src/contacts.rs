@@ -8,9 +8,10 @@ use crate::collider::{Collider, NONE};
 pub(crate) use crate::contact::BirthReport;
 pub use crate::contact::Contact;
 use crate::contact::{birth_jump, geometry, material, new_contact, owner, wall_touching, Touching};
+use crate::dashpots::{dashpot_power, shear_exit};
 use crate::neighbours::{merged, NeighbourList, PairScratch, Pick, Sink};
 use crate::prefilter::{hull, proven_apart, Hull};
-use flexdem_contact::{update_frictional_contact, ContactKinematics};
+use flexdem_contact::{update_frictional_contact, ContactDamping, ContactKinematics};
 use flexdem_elements::pairs::{self, Candidate, ConnectionRef, PFacetRef, SphereRef};
 use flexdem_elements::touching::{dominates, Element, ElementCandidate, Topology};
 use flexdem_elements::virtual_sphere::{distribute_force, Feature, Kinematics, NodeLoad, Site};
@@ -47,6 +48,12 @@ pub(crate) struct ContactPipeline {
     candidates: Vec<Option<ElementCandidate>>,
     touching: Vec<ElementCandidate>,
     loads: Vec<[NodeLoad; 6]>,
+    /// Whether a contact may have a dashpot (a material has damping, or a contact kept from
+    /// before has a dashpot): then `dashpot_loads` (and the neighbour list's) are kept.
+    damped: bool,
+    /// Per contact, the node loads of its dashpots' force alone, for their power over the
+    /// step after the kick (`dashpots.rs`); empty when `damped` is false.
+    dashpot_loads: Vec<[NodeLoad; 6]>,
     /// Buffers reused from step to step, so that detection does not allocate once warm.
     scratch: Scratch,
     connection_nodes: Vec<[u32; 2]>,
@@ -222,9 +229,12 @@ fn containing(collider: &Collider, adj: &Adjacency, feature: Feature, out: &mut 
 }
 
 impl ContactPipeline {
-    /// Empty buffers for the contacts of `model`.
-    pub(crate) fn new(model: &Model) -> Self {
+    /// Empty buffers for the contacts of `model` (`contacts` the ones it starts with).
+    pub(crate) fn new(model: &Model, contacts: &Contacts) -> Self {
         ContactPipeline {
+            damped: model.materials.iter().any(|m| m.damping != ContactDamping::None)
+                || contacts.list.iter().any(|c| c.params.is_damped())
+                || contacts.pairs.touching().any(|(_, c)| c.params.is_damped()),
             connection_nodes: model.connections.iter().map(|c| c.nodes).collect(),
             pfacet_nodes: model.pfacets.iter().map(|f| f.nodes).collect(),
             pfacet_connections: model.pfacets.iter().map(|f| f.connections).collect(),
@@ -509,7 +519,7 @@ impl ContactPipeline {
                 continue;
             }
             let c = &old[o];
-            contacts.ended_dissipation += c.state.dissipated.total();
+            contacts.ended_dissipation += c.state.dissipated.friction;
             let (_, _, g) = geometry(model, &k, c);
             let now = g.overlap - c.state.overlap_offset;
             // the spring leaves the balance: −½·F·δ_now (see above); ended by separating
@@ -522,6 +532,12 @@ impl ContactPipeline {
             }
             if c.params.ks > 0.0 {
                 report.released += 0.5 * c.state.shear_force.norm_squared() / c.params.ks;
+            }
+            let w = shear_exit(&c.params, &c.state.shear_force, &g.relative_velocity, dt);
+            if w >= 0.0 {
+                report.born_energy += w;
+            } else {
+                report.released -= w;
             }
         }
         report
@@ -541,11 +557,9 @@ impl ContactPipeline {
     ) -> BirthReport {
         let p = &model.particles;
         let k = Kinematics { pos: &p.pos, vel: &p.vel, ang_vel: &p.ang_vel };
-        self.loads.resize(
-            contacts.list.len(),
-            [NodeLoad { node: 0, force: Vec3::zeros(), torque: Vec3::zeros() }; 6],
-        );
-        contacts.list.par_iter_mut().zip(self.loads.par_iter_mut()).for_each(|(c, loads)| {
+        let zero = [NodeLoad { node: 0, force: Vec3::zeros(), torque: Vec3::zeros() }; 6];
+        self.loads.resize(contacts.list.len(), zero);
+        let update = |c: &mut Contact, loads: &mut [NodeLoad; 6]| {
             let (vs1, vs2, g) = geometry(model, &k, c);
             let f = update_frictional_contact(
                 &c.params,
@@ -564,7 +578,33 @@ impl ContactPipeline {
             loads[3..].copy_from_slice(&l2);
             c.forces = f;
             c.point = g.point;
-        });
+            (vs1, vs2, g)
+        };
+        if self.damped {
+            // the dashpots' force alone shared as the total is, for its power after the kick
+            self.dashpot_loads.resize(contacts.list.len(), zero);
+            contacts
+                .list
+                .par_iter_mut()
+                .zip(self.loads.par_iter_mut())
+                .zip(self.dashpot_loads.par_iter_mut())
+                .for_each(|((c, loads), dashpot)| {
+                    let (vs1, vs2, g) = update(c, loads);
+                    let f = c.forces.dashpot_force;
+                    if f == Vec3::zeros() {
+                        *dashpot = zero;
+                        return;
+                    }
+                    let l1 = distribute_force(&c.site1, &p.pos, &vs1.center, &g.point, &(-f));
+                    let l2 = distribute_force(&c.site2, &p.pos, &vs2.center, &g.point, &f);
+                    dashpot[..3].copy_from_slice(&l1);
+                    dashpot[3..].copy_from_slice(&l2);
+                });
+        } else {
+            contacts.list.par_iter_mut().zip(self.loads.par_iter_mut()).for_each(|(c, loads)| {
+                update(c, loads);
+            });
+        }
         // in key order, the free spheres' contacts among the others
         let mut add = |l: &NodeLoad| {
             force[l.node as usize] += l.force;
@@ -581,20 +621,23 @@ impl ContactPipeline {
             // contacts of smaller keys (the same sums, in the same order, as below)
             let general = &contacts.list;
             let mut g = 0;
+            let damped = self.damped;
             let report =
-                contacts.pairs.update_in_order(model, dt, &mut self.pairs, ended, |e| match e {
-                    Sink::Before(key) => {
-                        while g < general.len() && general[g].key() < *key {
-                            general_loads(g).for_each(&mut add);
-                            g += 1;
+                contacts.pairs.update_in_order(model, dt, damped, &mut self.pairs, ended, |e| {
+                    match e {
+                        Sink::Before(key) => {
+                            while g < general.len() && general[g].key() < *key {
+                                general_loads(g).for_each(&mut add);
+                                g += 1;
+                            }
                         }
+                        Sink::Load(l) => add(l),
                     }
-                    Sink::Load(l) => add(l),
                 });
             (g..general.len()).for_each(|n| general_loads(n).for_each(&mut add));
             return report;
         }
-        let report = contacts.pairs.update(model, dt, &mut self.pairs, ended);
+        let report = contacts.pairs.update(model, dt, self.damped, &mut self.pairs, ended);
         for pick in merged(&contacts.list, &contacts.pairs) {
             match pick {
                 Pick::General(n) => general_loads(n).for_each(&mut add),
@@ -605,6 +648,42 @@ impl ContactPipeline {
     }
 }
 
+impl ContactPipeline {
+    /// The dissipation of the contacts' dashpots at the last update, split as the leapfrog's
+    /// kinetic energy sees it (model.md §7): `(before, after)`, the work of the dashpot forces
+    /// at t over the half kick before, `−Σ F_d·v_rel(t − dt₀/2)·h/2`, and over the half kick
+    /// after, `−Σ F_d·v_rel(t + dt/2)·h/2` with the velocities the kick has just given (J);
+    /// `h = (dt₀ + dt)/2` is the kick, `dt₀ = previous` the step the law was given (its own
+    /// count, `dissipated.viscous`, is `−F_d·v_rel(t − dt₀/2)·dt₀`). To call after the
+    /// leapfrog; both 0 without dashpots.
+    pub(crate) fn dashpot_dissipation(
+        &self,
+        contacts: &Contacts,
+        model: &Model,
+        previous: Real,
+        dt: Real,
+    ) -> (Real, Real) {
+        if !self.damped {
+            return (0.0, 0.0);
+        }
+        let (mut law, mut power) = (0.0, 0.0);
+        for (c, loads) in contacts.list.iter().zip(&self.dashpot_loads) {
+            let f = &c.forces.dashpot_force;
+            if *f == Vec3::zeros() {
+                continue;
+            }
+            law += c.forces.dissipated.viscous;
+            power += dashpot_power(&c.site1, &c.site2, f, loads, model);
+        }
+        let (pair_law, pair_power) = contacts.pairs.dashpot_dissipation(&self.pairs, model);
+        law += pair_law;
+        power += pair_power;
+        // with a constant step, h/(2·dt₀) is 0.5 exactly
+        let kick = 0.5 * (previous + dt);
+        (law * (kick / (2.0 * previous)), -0.5 * kick * power)
+    }
+}
+
 impl Contacts {
     /// Elastic energy stored in the contacts at the last update.
     pub fn elastic_energy(&self) -> Real {
@@ -612,10 +691,11 @@ impl Contacts {
             + self.pairs.elastic_energy()
     }
 
-    /// Energy dissipated by contact friction since the start.
+    /// Energy dissipated by contact friction since the start (the dashpots' is counted by
+    /// the engine's energy account, `Energy::contact_damping`).
     pub fn dissipated(&self) -> Real {
         self.ended_dissipation
-            + self.list.iter().map(|c| c.state.dissipated.total()).sum::<Real>()
+            + self.list.iter().map(|c| c.state.dissipated.friction).sum::<Real>()
             + self.pairs.dissipated()
     }
 

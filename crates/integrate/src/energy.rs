@@ -1,5 +1,5 @@
 //! Energy terms of a simulation, the works of a step not yet added to them, and the energy
-//! watch (model.md §6).
+//! watch (model.md §3, §4, §7).
 
 use flexdem_geom::Real;
 
@@ -39,6 +39,10 @@ pub struct Energy {
     pub links_dissipated: Real,
     /// Energy dissipated by contact friction (J).
     pub friction: Real,
+    /// Energy dissipated by the contacts' viscous dashpots (model.md §7), contacts that ended
+    /// included: the work of each dashpot force over the half kick before it and the half
+    /// kick after, as the leapfrog's kinetic energy sees it (J).
+    pub contact_damping: Real,
 }
 
 impl Energy {
@@ -55,9 +59,14 @@ impl Energy {
         self.gravity_work + self.load_work + self.boundary_work + self.contact_births
     }
 
-    /// Energy taken out: damping, link and contact dissipation, contact releases.
+    /// Energy taken out: damping, link and contact dissipation (friction and dashpots),
+    /// contact releases.
     pub fn taken_out(&self) -> Real {
-        self.damping + self.links_dissipated + self.friction + self.contact_releases
+        self.damping
+            + self.links_dissipated
+            + self.friction
+            + self.contact_damping
+            + self.contact_releases
     }
 
     /// Stored energy minus the energy put in plus the energy taken out: constant in time when
@@ -94,6 +103,9 @@ pub struct PendingWork {
     pub boundary: Real,
     /// The second half of the last kick's damping (J, see `StepWork::damping_next`).
     pub damping: Real,
+    /// The second half of the contact dashpots' dissipation at the last step (J, see
+    /// `StepWork::contact_damping_next`).
+    pub contact_damping: Real,
 }
 
 /// The energy watch (model: "a run watches its energy"): the balance at the start (after the

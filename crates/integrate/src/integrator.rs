@@ -48,6 +48,12 @@ pub struct StepWork {
     pub boundary: Real,
     /// The other half: `−Σ (F·v + τ·ω)·dt/2`, over the step after (J).
     pub boundary_next: Real,
+    /// Energy dissipated by the contact dashpots' forces at t in the kick at t, the part the
+    /// kinetic energy at t shows: `−Σ F_d·v_rel(t − dt₀/2)·h/2` (J), `h` the kick, as for
+    /// Cundall damping. Not the leapfrog's: the integration stage sets it (model.md §7).
+    pub contact_damping: Real,
+    /// The other half, with the velocities of the kick: `−Σ F_d·v_rel(t + dt/2)·h/2` (J).
+    pub contact_damping_next: Real,
 }
 
 impl std::ops::AddAssign for StepWork {
@@ -59,6 +65,8 @@ impl std::ops::AddAssign for StepWork {
         self.damping_next += o.damping_next;
         self.boundary += o.boundary;
         self.boundary_next += o.boundary_next;
+        self.contact_damping += o.contact_damping;
+        self.contact_damping_next += o.contact_damping_next;
     }
 }
 

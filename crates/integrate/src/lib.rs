@@ -8,6 +8,7 @@ mod collider;
 mod contact;
 mod contacts;
 mod culprit;
+mod dashpots;
 mod energy;
 mod error;
 mod integrator;

@@ -17,6 +17,7 @@ use crate::contact::{
     birth_jump, geometry_of, new_contact, sphere_touching, wall_touching, BirthReport, Contact,
     SPHERE_OWNER, WALL_OWNER,
 };
+use crate::dashpots::{dashpot_power, shear_exit};
 use flexdem_contact::{
     update_frictional_contact, ContactForces, ContactKinematics, FrictionalContact,
     FrictionalParams,
@@ -34,7 +35,7 @@ pub type ContactKey = (Feature, Feature);
 /// and the owners).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct PairContact {
-    /// Stiffnesses and friction.
+    /// Stiffnesses, friction and dashpots.
     pub params: FrictionalParams,
     /// Shear force, last normal, dissipation.
     pub state: FrictionalContact,
@@ -107,6 +108,10 @@ pub(crate) struct PairScratch {
     pub(crate) outcomes: Vec<PairOutcome>,
     /// Indices of the pairs that started touching at the last update.
     pub(crate) fresh: Vec<usize>,
+    /// With dashpots (`update`'s `damped`), one per candidate pair: the node loads of its
+    /// dashpots' force alone (body 1's, body 2's), for their power after the kick; empty
+    /// without.
+    pub(crate) dashpot: Vec<[NodeLoad; 2]>,
 }
 
 /// The sites of the contact of `key` (a free sphere's radius from the model).
@@ -187,7 +192,7 @@ impl NeighbourList {
 
     /// Friction dissipated by the touching pairs over their lives.
     pub fn dissipated(&self) -> Real {
-        self.touching().map(|(_, c)| c.state.dissipated.total()).sum()
+        self.touching().map(|(_, c)| c.state.dissipated.friction).sum()
     }
 
     /// Whether every pair refers to particles and walls of a model of `particles` particles
@@ -242,25 +247,37 @@ impl NeighbourList {
     /// One step of every pair (in parallel): whether it touches; a new contact made as the
     /// general pipeline makes it (`contacts::new_contact`) with its birth accounted for; an
     /// ended one's friction, elastic and shear energy accounted for; then the contact law
-    /// and the node loads of every touching pair, into `scratch.outcomes` (one per pair).
-    /// `dt` is the step just done (the contact law's and the births' step). Returns what the
-    /// births and ends moved the energy balance by, and the ended pairs' friction in
-    /// `ended_dissipation`.
+    /// and the node loads of every touching pair, into `scratch.outcomes` (one per pair), and
+    /// when `damped` (a contact may have dashpots) the node loads of the dashpots' force
+    /// alone into `scratch.dashpot`. `dt` is the step just done (the contact law's and the
+    /// births' step). Returns what the births and ends moved the energy balance by, and the
+    /// ended pairs' friction in `ended_dissipation`.
     pub(crate) fn update(
         &mut self,
         model: &Model,
         dt: Real,
+        damped: bool,
         scratch: &mut PairScratch,
         ended_dissipation: &mut Real,
     ) -> BirthReport {
         let p = &model.particles;
         let k = Kinematics { pos: &p.pos, vel: &p.vel, ang_vel: &p.ang_vel };
         scratch.outcomes.resize(self.keys.len(), PairOutcome::default());
-        self.keys
-            .par_iter()
-            .zip(self.contacts.par_iter_mut())
-            .zip(scratch.outcomes.par_iter_mut())
-            .for_each(|((key, slot), out)| *out = step_pair(model, &k, key, slot, dt));
+        let pairs = self.keys.par_iter().zip(self.contacts.par_iter_mut());
+        if damped {
+            let none = NodeLoad { node: 0, force: Vec3::zeros(), torque: Vec3::zeros() };
+            scratch.dashpot.resize(self.keys.len(), [none; 2]);
+            pairs
+                .zip(scratch.outcomes.par_iter_mut())
+                .zip(scratch.dashpot.par_iter_mut())
+                .for_each(|(((key, slot), out), d)| {
+                    *out = step_pair(model, &k, key, slot, dt, Some(d));
+                });
+        } else {
+            pairs
+                .zip(scratch.outcomes.par_iter_mut())
+                .for_each(|((key, slot), out)| *out = step_pair(model, &k, key, slot, dt, None));
+        }
         let mut report = BirthReport::default();
         scratch.fresh.clear();
         for (n, o) in scratch.outcomes.iter().enumerate() {
@@ -277,11 +294,13 @@ impl NeighbourList {
 
     /// [`NeighbourList::update`] in one pass on this thread, giving `sink` each touching
     /// pair's key (`Sink::Before`), then its node loads (`Sink::Load`), in key order: the
-    /// loads are summed as they come (no buffer), with the same results.
+    /// loads are summed as they come (no buffer), with the same results (and, when `damped`,
+    /// the dashpots' node loads in `scratch.dashpot`, as `update` keeps them).
     pub(crate) fn update_in_order(
         &mut self,
         model: &Model,
         dt: Real,
+        damped: bool,
         scratch: &mut PairScratch,
         ended_dissipation: &mut Real,
         mut sink: impl FnMut(Sink<'_>),
@@ -290,8 +309,13 @@ impl NeighbourList {
         let k = Kinematics { pos: &p.pos, vel: &p.vel, ang_vel: &p.ang_vel };
         let mut report = BirthReport::default();
         scratch.fresh.clear();
+        if damped {
+            let none = NodeLoad { node: 0, force: Vec3::zeros(), torque: Vec3::zeros() };
+            scratch.dashpot.resize(self.keys.len(), [none; 2]);
+        }
         for (n, (key, slot)) in self.keys.iter().zip(self.contacts.iter_mut()).enumerate() {
-            let o = step_pair(model, &k, key, slot, dt);
+            let dashpot = if damped { Some(&mut scratch.dashpot[n]) } else { None };
+            let o = step_pair(model, &k, key, slot, dt, dashpot);
             if o.fresh {
                 scratch.fresh.push(n);
             }
@@ -308,6 +332,28 @@ impl NeighbourList {
         report
     }
 
+    /// The dashpots of the touching pairs at the last update (`update` with `damped`):
+    /// `(Σ dissipated.viscous, Σ power)`, the law's own count and the power of their forces
+    /// with the particles' and walls' current velocities (`dashpots::dashpot_power`; called
+    /// after the kick).
+    pub(crate) fn dashpot_dissipation(&self, scratch: &PairScratch, model: &Model) -> (Real, Real) {
+        let (mut law, mut power) = (0.0, 0.0);
+        let none = NodeLoad { node: 0, force: Vec3::zeros(), torque: Vec3::zeros() };
+        for ((key, c), loads) in self.keys.iter().zip(&self.contacts).zip(&scratch.dashpot) {
+            let Some(c) = c else { continue };
+            let f = &c.forces.dashpot_force;
+            if *f == Vec3::zeros() {
+                continue;
+            }
+            let (site1, site2) = sites(model, key);
+            // body 1's load in slot 0, body 2's in slot 3 (`dashpot_power`'s layout)
+            let loads = [loads[0], none, none, loads[1], none, none];
+            law += c.forces.dissipated.viscous;
+            power += dashpot_power(&site1, &site2, f, &loads, model);
+        }
+        (law, power)
+    }
+
     /// The node loads of the touching pair at `index` at the last update: body 1's (none for
     /// a wall) and body 2's.
     pub(crate) fn loads<'a>(
@@ -321,13 +367,15 @@ impl NeighbourList {
     }
 }
 
-/// One pair's step (see [`NeighbourList::update`]).
+/// One pair's step (see [`NeighbourList::update`]); with `dashpot`, the node loads of its
+/// dashpots' force alone go there (zero without one).
 fn step_pair(
     model: &Model,
     k: &Kinematics<'_>,
     key: &ContactKey,
     slot: &mut Option<PairContact>,
     dt: Real,
+    dashpot: Option<&mut [NodeLoad; 2]>,
 ) -> PairOutcome {
     let mut out = PairOutcome::default();
     let touching = match *key {
@@ -365,7 +413,7 @@ fn step_pair(
             });
         }
         (None, Some(c)) => {
-            out.ended_dissipation = c.state.dissipated.total();
+            out.ended_dissipation = c.state.dissipated.friction;
             let (_, _, g) = geometry_of(model, k, &site1, &site2, &c.state.normal);
             let now = g.overlap - c.state.overlap_offset;
             // the spring leaves the balance: −½·F·δ_now (see `settle_births`)
@@ -377,6 +425,12 @@ fn step_pair(
             }
             if c.params.ks > 0.0 {
                 out.released += 0.5 * c.state.shear_force.norm_squared() / c.params.ks;
+            }
+            let w = shear_exit(&c.params, &c.state.shear_force, &g.relative_velocity, dt);
+            if w >= 0.0 {
+                out.born_energy += w;
+            } else {
+                out.released -= w;
             }
             *slot = None;
         }
@@ -425,8 +479,30 @@ fn step_pair(
                 torque: (g.point - center2).cross(&f.force_on_2),
             },
         ];
+        if let Some(d) = dashpot {
+            // the dashpots' force alone, shared the same way
+            let fd = f.dashpot_force;
+            *d = if fd == Vec3::zeros() {
+                [NodeLoad { node: 0, force: Vec3::zeros(), torque: Vec3::zeros() }; 2]
+            } else {
+                [
+                    NodeLoad {
+                        node: site1.nodes[0],
+                        force: -fd,
+                        torque: (g.point - center1).cross(&(-fd)),
+                    },
+                    NodeLoad {
+                        node: site2.nodes[0],
+                        force: fd,
+                        torque: (g.point - center2).cross(&fd),
+                    },
+                ]
+            };
+        }
         c.forces = f;
         c.point = g.point;
+    } else if let Some(d) = dashpot {
+        *d = [NodeLoad { node: 0, force: Vec3::zeros(), torque: Vec3::zeros() }; 2];
     }
     out
 }
@@ -545,7 +621,7 @@ mod tests {
 
     fn contact(point: Real) -> PairContact {
         PairContact {
-            params: FrictionalParams { kn: 1.0, ks: 0.5, tan_phi: 0.3 },
+            params: FrictionalParams { kn: 1.0, ks: 0.5, tan_phi: 0.3, cn: 0.0, ct: 0.0 },
             state: FrictionalContact::new(Vec3::z()),
             forces: ContactForces::default(),
             point: Vec3::repeat(point),

@@ -45,7 +45,7 @@ impl Pipeline {
         Pipeline {
             collider: Collider::new(&state.model, state.settings.verlet_factor),
             adjacency: state.model.adjacency(),
-            contacts: ContactPipeline::new(&state.model),
+            contacts: ContactPipeline::new(&state.model, &state.contacts),
             force: vec![Vec3::zeros(); n],
             torque: vec![Vec3::zeros(); n],
             external_force: vec![Vec3::zeros(); n],

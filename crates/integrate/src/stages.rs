@@ -4,6 +4,7 @@
 
 use crate::contacts::Contact;
 use crate::culprit::describe;
+use crate::dashpots::damped_stiffness_factor;
 use crate::energy::PendingWork;
 use crate::integrator::{leapfrog_step, StepWork};
 use crate::links::LinkUpdate;
@@ -15,7 +16,7 @@ use crate::simulation::Simulation;
 use crate::time_step::{critical_step_from_stiffness, p_wave_time_step, StiffnessSums};
 use crate::timers::Stage;
 use crate::SimulationError;
-use flexdem_elements::Dofs;
+use flexdem_elements::{Dofs, Particles};
 use flexdem_geom::{Real, Vec3};
 use rayon::prelude::*;
 
@@ -43,7 +44,7 @@ impl Simulation {
                 k.add(i, &n, s.kn, s.ks, 0.5 * len, s.kt, s.kb);
             }
         }
-        self.state.contacts.for_each(&self.state.model, |c| add_contact_stiffness(&mut k, c));
+        self.state.contacts.for_each(&self.state.model, |c| add_contact_stiffness(&mut k, c, p));
         self.state.clock.dt_updated_at = self.state.clock.steps;
         let critical = critical_step_from_stiffness(&self.state.model, &k)
             .or_else(|| p_wave_time_step(&self.state.model))
@@ -260,6 +261,12 @@ impl Simulation {
         );
         work.boundary += 0.5 * walls.before * previous;
         work.boundary_next += 0.5 * walls.after * dt;
+        // the dashpots' forces at t over the two halves of the kick (model.md §7): the second
+        // with the velocities just kicked and the walls' new velocities
+        (work.contact_damping, work.contact_damping_next) = self
+            .pipeline
+            .contacts
+            .dashpot_dissipation(&self.state.contacts, &self.state.model, previous, dt);
         for wall in &mut self.state.model.walls {
             wall.point += wall.velocity * dt;
         }
@@ -317,7 +324,7 @@ impl Simulation {
                     &made
                 }
             };
-            add_contact_stiffness(&mut self.state.clock.stiffness, c);
+            add_contact_stiffness(&mut self.state.clock.stiffness, c, p);
             for site in [&c.site1, &c.site2] {
                 for slot in 0..site.node_count() {
                     let n = site.nodes[slot] as usize;
@@ -362,11 +369,13 @@ impl Simulation {
         e.load_work += self.state.energy.pending.load + load_work;
         e.boundary_work += self.state.energy.pending.boundary + work.boundary;
         e.damping += self.state.energy.pending.damping + work.damping;
+        e.contact_damping += self.state.energy.pending.contact_damping + work.contact_damping;
         self.state.energy.pending = PendingWork {
             gravity: work.gravity,
             load: load_next,
             boundary: work.boundary_next,
             damping: work.damping_next,
+            contact_damping: work.contact_damping_next,
         };
         if self.state.clock.steps == 1 {
             // the reference of the watch is the balance after the first step: the first kick's
@@ -489,12 +498,23 @@ struct WallPower {
 
 /// Adds a contact's stiffness to the particles carrying its two sites (the full contact
 /// stiffness on each: conservative), with the site's radius as the lever arm of the shear.
-fn add_contact_stiffness(k: &mut StiffnessSums, c: &Contact) {
+/// A contact with dashpots counts for the stiffer spring whose stability limit it has
+/// (`damped_stiffness_factor`, model.md §7).
+fn add_contact_stiffness(k: &mut StiffnessSums, c: &Contact, p: &Particles) {
     let n = c.state.normal;
+    let (kn, ks) = (c.params.kn, c.params.ks);
+    let damped = c.params.is_damped();
     for site in [&c.site1, &c.site2] {
         for slot in 0..site.node_count() {
             let node = site.nodes[slot] as usize;
-            k.add(node, &n, c.params.kn, c.params.ks, site.radius, 0.0, 0.0);
+            if damped {
+                let m = p.mass[node];
+                let kn = kn * damped_stiffness_factor(kn, c.params.cn, m);
+                let ks = ks * damped_stiffness_factor(ks, c.params.ct, m);
+                k.add(node, &n, kn, ks, site.radius, 0.0, 0.0);
+            } else {
+                k.add(node, &n, kn, ks, site.radius, 0.0, 0.0);
+            }
         }
     }
 }
