@@ -8,7 +8,7 @@ use crate::error::{unknown_name, Ctx, SceneError};
 use crate::run_length::{check_step_count, RunLength};
 use crate::scene::{Scene, MAX_THREADS};
 use crate::schema::{BoundarySpec, Dt, MaterialSpec, SceneFile, SimulationSpec, Tolerance, S};
-use flexdem_contact::{FailureMode, LinkKinematicsMode, Material};
+use flexdem_contact::{ContactDamping, FailureMode, LinkKinematicsMode, Material};
 use flexdem_elements::{Dofs, MaterialId, Model};
 use flexdem_geom::Real;
 use flexdem_integrate::{Settings, TimeStep};
@@ -284,6 +284,7 @@ impl Builder<'_> {
             shear_strength: strength(&m.shear_strength, "shear_strength")?,
             failure: FailureMode::Fragile,
             moments: m.moments.unwrap_or(true),
+            damping: self.contact_damping(m, &key)?,
         };
         if let Some(r) = &m.shear_ratio {
             material.shear_ratio = ctx.non_negative(r, &key("shear_ratio"), "ks/kn")?;
@@ -307,6 +308,48 @@ impl Builder<'_> {
             .map_err(|e| ctx.at(spec.span(), &format!("materials.{n}"), e.to_string()))?;
         self.materials.push((n.clone(), id));
         Ok(())
+    }
+
+    /// The viscous contact damping of a material (model.md §7): `restitution` (0 < e ≤ 1), or
+    /// the rates per unit mass `gamma_n`, `gamma_t` (1/s, each 0 when absent), not both.
+    fn contact_damping(
+        &self,
+        m: &MaterialSpec,
+        key: &dyn Fn(&str) -> String,
+    ) -> Result<ContactDamping, SceneError> {
+        let ctx = self.ctx;
+        let rate = |v: &Option<S<f64>>, k: &str| match v {
+            None => Ok(0.0),
+            Some(g) => ctx.non_negative(g, &key(k), "1/s, a damping rate per unit mass"),
+        };
+        let (gamma_n, gamma_t) = (rate(&m.gamma_n, "gamma_n")?, rate(&m.gamma_t, "gamma_t")?);
+        let Some(e) = &m.restitution else {
+            return Ok(if m.gamma_n.is_none() && m.gamma_t.is_none() {
+                ContactDamping::None
+            } else {
+                ContactDamping::Viscous { gamma_n, gamma_t }
+            });
+        };
+        if let Some((g, k)) = [(&m.gamma_n, "gamma_n"), (&m.gamma_t, "gamma_t")]
+            .into_iter()
+            .find_map(|(g, k)| g.as_ref().map(|g| (g, k)))
+        {
+            return Err(ctx.at(
+                g.span(),
+                &key(k),
+                "conflicts with `restitution`: give a coefficient of restitution or the damping \
+                 rates `gamma_n`, `gamma_t` (1/s), not both",
+            ));
+        }
+        let v = *e.get_ref();
+        if !(v > 0.0 && v <= 1.0) {
+            return Err(ctx.at(
+                e.span(),
+                &key("restitution"),
+                format!("is {v}: expected a coefficient of restitution with 0 < restitution <= 1"),
+            ));
+        }
+        Ok(ContactDamping::Restitution(v))
     }
 
     fn add_boundary(&mut self, spec: &S<BoundarySpec>) -> Result<(), SceneError> {

@@ -183,6 +183,9 @@ pub(crate) struct MaterialSpec {
     pub shear_strength: Option<S<f64>>,
     pub failure: Option<S<String>>,
     pub moments: Option<bool>,
+    pub restitution: Option<S<f64>>,
+    pub gamma_n: Option<S<f64>>,
+    pub gamma_t: Option<S<f64>>,
 }
 
 /// `placement = { translate, rotate_deg | axis + angle_deg, scale }`.

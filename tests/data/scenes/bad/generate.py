@@ -93,6 +93,10 @@ CASES = {
     "series_stress_needs_region": (BASE + SERIES.replace('[[output.series]]', '[[output.series]]  # <- error') + 'quantity = "stress"\n', ["`output.series.box`", "needs a region", "cylinder"]),
     "series_key_of_other_quantity": (BASE + SERIES + 'quantity = "energy"\nwall = 0  # <- error\n', ["`output.series.wall`", "quantity = \"energy\" does not take `wall`", "wall_force and wall_stress"]),
     "series_flat_box": (BASE + SERIES + 'quantity = "solid_fraction"\nbox = { min = [0, 0, 0], max = [1, 0, 1] }  # <- error\n', ["`output.series.box`", "not below max", "no volume"]),
+    # viscous contact damping (model.md §7)
+    "restitution_out_of_range": (SIM + '\n[materials.steel]\nyoung = 1e9\npoisson = 0.3\ndensity = 7850\nfriction_angle_deg = 30\nrestitution = 1.2  # <- error\n', ["`materials.steel.restitution`", "is 1.2", "0 < restitution <= 1"]),
+    "damping_restitution_and_rates": (SIM + '\n[materials.steel]\nyoung = 1e9\npoisson = 0.3\ndensity = 7850\nfriction_angle_deg = 30\nrestitution = 0.5\ngamma_n = 100  # <- error\n', ["`materials.steel.gamma_n`", "conflicts with `restitution`", "not both"]),
+    "negative_gamma_t": (SIM + '\n[materials.steel]\nyoung = 1e9\npoisson = 0.3\ndensity = 7850\nfriction_angle_deg = 30\ngamma_t = -5  # <- error\n', ["`materials.steel.gamma_t`", "is -5", "expected a finite number >= 0 (1/s"]),
     "chain_thicker_than_its_segments": (SIM + MAT + CHAIN.replace('[[structures]]', '[[structures]]  # <- error').replace('segments = 4', 'segments = 1000000'), ["`structures`", "structure `cable` overlaps itself at the start", "connection 0 (nodes 0–1)", "connection 2 (nodes 2–3)"]),
 }
 
