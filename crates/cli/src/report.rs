@@ -94,6 +94,7 @@ pub fn text(summary: &Summary) -> String {
         &mut t.damping,
         &mut t.links_dissipated,
         &mut t.friction,
+        &mut t.contact_damping,
         &mut t.contact_releases,
     ] {
         *x += 0.0;
@@ -102,7 +103,8 @@ pub fn text(summary: &Summary) -> String {
         s,
         "energy (J): kinetic {:.4e} + {:.4e} (rotation), elastic links {:.4e}, contacts {:.4e}; \
          work of gravity {:.4e}, of loads {:.4e}, of boundaries {:.4e}; contact births and ends {:.4e}; \
-         dissipated by damping {:.4e}, links {:.4e}, friction {:.4e}; released by contacts {:.4e}",
+         dissipated by damping {:.4e}, links {:.4e}, friction {:.4e}, contact dashpots {:.4e}; \
+         released by contacts {:.4e}",
         t.kinetic_translation,
         t.kinetic_rotation,
         t.elastic_links,
@@ -114,6 +116,7 @@ pub fn text(summary: &Summary) -> String {
         t.damping,
         t.links_dissipated,
         t.friction,
+        t.contact_damping,
         t.contact_releases
     );
     let _ = writeln!(

@@ -111,7 +111,14 @@ fn every_example_runs_a_few_steps_and_writes_its_output_and_summary() {
         for count in ["particles", "spheres", "nodes", "connections", "pfacets", "walls"] {
             assert!(at(&json, &format!("/counts/{count}")).is_u64(), "{name} {count}");
         }
-        for term in ["kinetic_translation", "elastic_links", "friction", "stored", "balance"] {
+        for term in [
+            "kinetic_translation",
+            "elastic_links",
+            "friction",
+            "contact_damping",
+            "stored",
+            "balance",
+        ] {
             assert!(at(&json, &format!("/energy/{term}")).is_f64(), "{name} {term}");
         }
         // a few steps are too few to judge the balance (works lag a step): only its presence

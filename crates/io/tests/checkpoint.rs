@@ -219,6 +219,39 @@ fn a_run_with_a_servo_wall_restarted_from_a_checkpoint_continues_bit_identically
     assert_ne!(a.model().walls[1].velocity, moving, "the platen should have moved on");
 }
 
+/// Damped spheres (restitution 0.3) dropped on a damped floor, checkpointed while they bounce:
+/// the dashpots' pending half of dissipation is in the state, and the restored run continues
+/// exactly as the uninterrupted one, energy terms included.
+#[test]
+fn a_damped_run_restarted_from_a_checkpoint_continues_bit_identically() {
+    let mut model = Model::new();
+    let damped = Material::new(1e7, 0.3, 2600.0, 0.5)
+        .unwrap()
+        .with_damping(flexdem_contact::ContactDamping::Restitution(0.3));
+    let m = model.add_material(damped).unwrap();
+    let r = 0.01;
+    model.add_wall(Vec3::zeros(), Vec3::z(), m).unwrap();
+    for (x, z) in [(0.0, 1.2 * r), (0.5 * r, 3.5 * r), (-0.4 * r, 6.0 * r)] {
+        model.add_sphere(Vec3::new(x, 0.1 * x, z), r, m).unwrap();
+    }
+    let settings = Settings { gravity: Vec3::new(0.0, 0.0, -9.81), ..Settings::default() };
+    let mut a = Simulation::new(model, settings).unwrap();
+    // a few bounces in, while a dashpot pushes
+    a.run(2000).unwrap();
+    while a.state().energy.pending.contact_damping == 0.0 {
+        assert!(a.steps() < 100_000, "the spheres never touched");
+        a.step().unwrap();
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("damped.ckp");
+    write_checkpoint(&path, &checkpoint_of(&a)).unwrap();
+    a.run(2000).unwrap();
+    let (mut b, _) = restore_checkpoint(&path).unwrap();
+    b.run(2000).unwrap();
+    assert_same_state(&a, &b);
+    assert!(a.energy().contact_damping > 0.0);
+}
+
 #[test]
 fn a_checkpoint_round_trips_bit_exactly() {
     let dir = tempfile::tempdir().unwrap();
@@ -360,10 +393,18 @@ fn foreign_and_odd_files_give_their_error() {
 
     // 2: the format of the engine's former `Snapshot`, before the `State` of version 3;
     // 3: the `State` before the wall controls of version 4;
-    // 4: the `State` before its pressures on PFacets
-    let older =
-        [(CHECKPOINT_VERSION + 1, "newer"), (0, "older"), (2, "older"), (4, "older"), (5, "older")];
-    assert_eq!(CHECKPOINT_VERSION, 6);
+    // 4: the `State` before its pressures on PFacets;
+    // 5: the `State` before the free spheres' neighbour list;
+    // 6: the `State` before the viscous contact damping
+    let older = [
+        (CHECKPOINT_VERSION + 1, "newer"),
+        (0, "older"),
+        (2, "older"),
+        (4, "older"),
+        (5, "older"),
+        (6, "older"),
+    ];
+    assert_eq!(CHECKPOINT_VERSION, 7);
     for (version, word) in older {
         let mut bytes = valid.to_vec();
         bytes[8..12].copy_from_slice(&version.to_le_bytes());
@@ -477,8 +518,10 @@ fn damaged_contacts_and_counters_are_refused() {
         damage(&mut touching[0].1);
         c.state.contacts.pairs = touching.into();
     }
-    let damages: [fn(&mut Checkpoint); 11] = [
+    let damages: [fn(&mut Checkpoint); 14] = [
         |c| general(c).site2.weights[0] = f64::NAN,
+        |c| general(c).params.cn = -1.0,
+        |c| general(c).params.ct = f64::NAN,
         |c| general(c).state.overlap_offset = -1.0,
         |c| general(c).site2.weights = [0.7, 0.7, 0.7],
         |c| general(c).state.normal *= 2.0,
@@ -486,6 +529,7 @@ fn damaged_contacts_and_counters_are_refused() {
         |c| pair(c, |p| p.state.overlap_offset = -1.0),
         |c| pair(c, |p| p.state.normal *= 2.0),
         |c| pair(c, |p| p.params.kn = f64::NAN),
+        |c| pair(c, |p| p.params.cn = f64::INFINITY),
         |c| c.state.clock.dt_updated_at = c.state.clock.steps + 5,
         |c| c.state.wall_controls.clear(),
         |c| {

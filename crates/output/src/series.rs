@@ -96,7 +96,7 @@ pub struct OutputSettings {
 }
 
 /// Names of the energy columns, in the order of [`energy_values`].
-const ENERGY_TERMS: [&str; 13] = [
+const ENERGY_TERMS: [&str; 14] = [
     "kinetic_translation",
     "kinetic_rotation",
     "elastic_links",
@@ -108,12 +108,13 @@ const ENERGY_TERMS: [&str; 13] = [
     "damping",
     "links_dissipated",
     "friction",
+    "contact_damping",
     "contact_releases",
     "balance",
 ];
 
 /// The energy terms of a simulation in the order of [`ENERGY_TERMS`] (J).
-fn energy_values(sim: &Simulation) -> [Real; 13] {
+fn energy_values(sim: &Simulation) -> [Real; 14] {
     let e = sim.energy();
     [
         e.kinetic_translation,
@@ -127,6 +128,7 @@ fn energy_values(sim: &Simulation) -> [Real; 13] {
         e.damping,
         e.links_dissipated,
         e.friction,
+        e.contact_damping,
         e.contact_releases,
         e.balance(),
     ]

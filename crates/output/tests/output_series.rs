@@ -67,6 +67,7 @@ fn expected_row(sim: &Simulation) -> Vec<Real> {
         e.damping,
         e.links_dissipated,
         e.friction,
+        e.contact_damping,
         e.contact_releases,
         e.balance(),
     ]);
@@ -134,6 +135,7 @@ fn csv_rows_hold_the_simulation_values_and_the_plot_is_a_png() {
         "damping",
         "links_dissipated",
         "friction",
+        "contact_damping",
         "contact_releases",
         "balance",
     ];

@@ -314,6 +314,6 @@ mod tests {
         let e = energy(&sim);
         let names: Vec<&str> = e.iter().map(|(k, _)| k.as_str()).collect();
         assert!(names.contains(&"elastic_links") && names.contains(&"balance"));
-        assert_eq!(names.len(), 12 + 7);
+        assert_eq!(names.len(), 13 + 7);
     }
 }

@@ -65,8 +65,8 @@ def test_series_columns_and_known_values(tmp_path):
         f"e_{t}_J" for t in ("kinetic_translation", "kinetic_rotation", "elastic_links",
                              "elastic_contacts", "gravity_work", "load_work",
                              "boundary_work", "contact_births", "damping",
-                             "links_dissipated", "friction", "contact_releases",
-                             "balance")] + ["n_count"]
+                             "links_dissipated", "friction", "contact_damping",
+                             "contact_releases", "balance")] + ["n_count"]
     assert all(len(a) == 0 for a in s.values())  # nothing recorded before the run
 
     sim.run(steps=40)

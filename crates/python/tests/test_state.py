@@ -18,6 +18,7 @@ ENERGY_TERMS = [
     "damping",
     "links_dissipated",
     "friction",
+    "contact_damping",
 ]
 
 
@@ -98,3 +99,31 @@ def test_time_steps_dt(cantilever_text):
     assert sim.steps == 10
     assert sim.time == pytest.approx(10 * dt)
     assert sim.warnings == []
+
+
+def bouncing_ball(**damping):
+    """A sphere dropped at 0.5 m/s onto a wall, both of a material with `damping` keys."""
+    material = {"young": 1e8, "poisson": 0.3, "density": 2650, "friction_angle_deg": 30,
+                **damping}
+    return {
+        "simulation": {"dt": 1e-7, "steps": 1},
+        "materials": {"m": material},
+        "walls": [{"point": [0, 0, 0], "normal": [0, 0, 1], "material": "m"}],
+        "spheres": [{"kind": "single", "material": "m", "center": [0, 0, 0.01001],
+                     "radius": 0.01, "velocity": [0, 0, -0.5]}],
+    }
+
+
+def test_contact_damping_from_a_dict():
+    # restitution 0.5: ζ = 0.2155, and the clamped dashpot's restitution
+    # exp(−2ζ·arccos ζ/√(1 − ζ²)) = 0.5503 (docs/model.md §7)
+    sim = flexdem.Simulation.from_dict(bouncing_ball(restitution=0.5))
+    sim.run(steps=6000)
+    assert sim.velocities[0, 2] / 0.5 == pytest.approx(0.5503, rel=1e-2)
+    e = sim.energy()
+    # the dashpot took what the bounce lost: ½·m·v0²·(1 − e²), with ½·m·v² = e²·½·m·v0²
+    lost = e["kinetic_translation"] * (1 - 0.5503**2) / 0.5503**2
+    assert e["contact_damping"] == pytest.approx(lost, rel=3e-2)
+    assert abs(e["relative_balance_error"]) < 1e-9
+    with pytest.raises(flexdem.SceneError, match="materials.m.gamma_n.*conflicts"):
+        flexdem.Simulation.from_dict(bouncing_ball(restitution=0.5, gamma_n=100.0))

@@ -5,7 +5,7 @@ use super::common::{build_simulation, describe_run, read_scene};
 use crate::cli::SceneArgs;
 use crate::error::{CliError, Outcome};
 use crate::report::plural;
-use flexdem_contact::Material;
+use flexdem_contact::{ContactDamping, Material};
 use flexdem_elements::ParticleKind;
 use flexdem_integrate::{Simulation, TimeStep};
 use flexdem_io::scene::RunLength;
@@ -49,8 +49,15 @@ fn describe_material(m: &Material) -> String {
         Some(x) => format!("{x:.3e} Pa"),
         None => "unbreakable".into(),
     };
+    let damping = match m.damping {
+        ContactDamping::None => String::new(),
+        ContactDamping::Restitution(e) => format!(", restitution {e}"),
+        ContactDamping::Viscous { gamma_n, gamma_t } => {
+            format!(", damping γn = {gamma_n} /s, γt = {gamma_t} /s")
+        }
+    };
     format!(
-        "E = {:.3e} Pa, ν = {}, ρ = {} kg/m³, friction {:.1}°, tensile {}, shear {}",
+        "E = {:.3e} Pa, ν = {}, ρ = {} kg/m³, friction {:.1}°, tensile {}, shear {}{damping}",
         m.young,
         m.poisson,
         m.density,

@@ -74,6 +74,9 @@ fn check_law(p: &FrictionalParams, st: &FrictionalContact, point: &Vec3) -> Resu
     if !(non_negative(p.kn) && non_negative(p.ks) && non_negative(p.tan_phi)) {
         return Err(format!("stiffness or friction {p:?}"));
     }
+    if !(non_negative(p.cn) && non_negative(p.ct)) {
+        return Err(format!("dashpots {p:?}"));
+    }
     if !(finite(&st.shear_force) && finite(&st.normal) && finite(point)) {
         return Err("a shear force, normal or contact point that is not finite".into());
     }

@@ -25,7 +25,10 @@
 //! Version 4 adds the wall controls to the [`State`] (`State::wall_controls`: strain control
 //! or a servo holding a stress, one per wall); version 5 the pressures on PFacets
 //! (`State::pressures`) and the enclosed-volume quantity of the output series; version 6 the
-//! free spheres' neighbour list (`Contacts::pairs`: their touching pairs, with their history).
+//! free spheres' neighbour list (`Contacts::pairs`: their touching pairs, with their history);
+//! version 7 the viscous contact damping (a material's `damping`, a contact's dashpots `cn`,
+//! `ct`, their dissipation: `Dissipation::viscous`, `Energy::contact_damping` and its pending
+//! half).
 //! Files of older versions are refused with the version error, which says so.
 //!
 //! # Writing
@@ -67,7 +70,7 @@ use std::path::{Path, PathBuf};
 pub const CHECKPOINT_MAGIC: [u8; 8] = *b"FLXDMCKP";
 
 /// The format version this build writes and reads (see the module documentation).
-pub const CHECKPOINT_VERSION: u32 = 6;
+pub const CHECKPOINT_VERSION: u32 = 7;
 
 /// Size of the header before the payload: magic, version, length, checksum (bytes).
 pub const CHECKPOINT_HEADER_LEN: usize = 24;
