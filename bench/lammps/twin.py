@@ -19,10 +19,11 @@ makes, in DIR:
 The contact law is the same linear spring with Coulomb friction: flexdem's kn = 2·E·r1·r2/(r1 +
 r2) = E·r for equal spheres and for a sphere on a wall (eq 3, a wall takes the sphere's
 radius), so E = kn/r; ks = shear_ratio·kn = kt; tan φ = xmu. LAMMPS stores the shear
-displacement and flexdem the shear force (equal for a constant kt); LAMMPS's Coulomb limit uses
-the normal force with its damping part, flexdem's without; LAMMPS does not clamp the damped
-normal force at 0, flexdem does. With the default gamma_n = gamma_t = 0 (no contact damping)
-the two laws are the same.
+displacement and flexdem the shear force (equal for a constant kt); both test Coulomb on the
+shear spring plus the tangential dashpot against the normal force with its damping part and
+rescale the spring when it slides, but LAMMPS does not clamp the damped normal force at 0
+(unless `limit_damping`) and takes |Fn| for the limit, while flexdem clamps it (docs/model.md
+§7). With the default gamma_n = gamma_t = 0 (no contact damping) the two laws are the same.
 """
 import argparse
 import math
