@@ -7,6 +7,11 @@
 #
 #   bench/run_vs_lammps.sh [COUNT] [STEPS] [REPEATS]     (defaults 16000 2000 3)
 #
+# Contact damping in both (LAMMPS's gamma_n, gamma_t per unit mass; flexdem's material keys of
+# the same names, docs/model.md §7): GAMMA_N and GAMMA_T in the environment, default 5000 and
+# 2500 1/s (a restitution of about 0.5 between two beads: damping ratio gamma_n/(2*omega0),
+# omega0 = sqrt(kn/m_eff) = 12 400 rad/s); GAMMA_N=0 GAMMA_T=0 runs the undamped law.
+#
 # Needs LAMMPS's `lmp` (Debian: apt-get install lammps) and python3. Prints the engine time
 # per sphere-step of both codes (flexdem: the timed steps of `flexdem bench --scene-file`;
 # LAMMPS: the "Loop time" of its timed run) and their ratio.
@@ -16,12 +21,14 @@ count=${1:-16000}
 steps=${2:-2000}
 repeats=${3:-3}
 warmup=200
-out=target/flexdem/bench/lammps_$count
+gamma_n=${GAMMA_N:-5000}
+gamma_t=${GAMMA_T:-2500}
+out=target/flexdem/bench/lammps_${count}_g${gamma_n}
 command -v lmp >/dev/null || { echo "lmp not found: apt-get install lammps" >&2; exit 1; }
 cargo build --release -p flexdem-cli >/dev/null
 flexdem=$PWD/target/release/flexdem
 python3 bench/lammps/twin.py --flexdem "$flexdem" --out "$out" --count "$count" \
-    --warmup "$warmup" --steps "$steps"
+    --warmup "$warmup" --steps "$steps" --gamma-n "$gamma_n" --gamma-t "$gamma_t"
 fx=(); lx=()
 for r in $(seq "$repeats"); do
     line=$(cd "$out" && RAYON_NUM_THREADS=1 "$flexdem" bench --scene-file granular.toml \
