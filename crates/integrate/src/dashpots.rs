@@ -59,6 +59,34 @@ pub(crate) fn dashpot_power(
     power
 }
 
+/// [`dashpot_power`] of a free spheres' pair `key` (a sphere and a sphere, or a wall and a
+/// sphere) whose dashpots pushed body 2 with `force`: its node loads are `−force` with the
+/// moment `moments[0]` on sphere 1 (none on a wall) and `force` with `moments[1]` on sphere
+/// 2, summed in that order and less `force·v_wall` for a wall, as [`dashpot_power`] sums
+/// them (the same operations, so the same result to the last bit).
+pub(crate) fn pair_dashpot_power(
+    key: &(Feature, Feature),
+    force: &Vec3,
+    moments: &[Vec3; 2],
+    model: &Model,
+) -> Real {
+    let p = &model.particles;
+    let load = |i: u32, f: &Vec3, moment: &Vec3| {
+        f.dot(&p.vel[i as usize]) + moment.dot(&p.ang_vel[i as usize])
+    };
+    let mut power = 0.0;
+    if let Feature::Particle(i) = key.0 {
+        power += load(i, &(-force), &moments[0]);
+    }
+    if let Feature::Particle(j) = key.1 {
+        power += load(j, force, &moments[1]);
+    }
+    if let Feature::Wall(w) = key.0 {
+        power -= force.dot(&model.walls[w as usize].velocity);
+    }
+    power
+}
+
 /// What a contact that ended moves the energy balance by through the force `fs` its shear
 /// spring had at its last update, which also works over the half step after it (the kinetic
 /// energy shows it): `½·Fs·v_rel·dt`, `v_rel` the relative velocity of the contact point
@@ -117,6 +145,37 @@ mod tests {
         // a held node of weight 0 does not hold the site
         let edge = Site::edge(0, [0, 2], 0.0, 0.1);
         assert_eq!(site_mass(&edge, &p), 1.0);
+    }
+
+    #[test]
+    fn a_pairs_dashpot_power_is_the_general_one_to_the_bit() {
+        use flexdem_contact::Material;
+        let mut model = Model::new();
+        let m = model.add_material(Material::new(1e8, 0.3, 2650.0, 0.5).unwrap()).unwrap();
+        let wall = model.add_wall(Vec3::zeros(), Vec3::z(), m).unwrap();
+        model.walls[wall as usize].velocity = Vec3::new(0.3, -0.2, 0.7);
+        for (x, v, w) in
+            [(0.0, [1.1, -0.3, 0.2], [3.0, 1.0, -2.0]), (0.9, [-0.4, 0.5, 0.1], [0.5, -7.0, 2.5])]
+        {
+            let i = model.add_sphere(Vec3::new(x, 0.0, 0.5), 0.5, m).unwrap();
+            model.particles.vel[i as usize] = Vec3::from(v);
+            model.particles.ang_vel[i as usize] = Vec3::from(w);
+        }
+        let f = Vec3::new(0.37, -1.9, 4.3);
+        let moments = [Vec3::new(0.1, 0.25, -0.3), Vec3::new(-0.7, 0.05, 0.9)];
+        let load = |node: u32, force: Vec3, torque: Vec3| NodeLoad { node, force, torque };
+        let none = load(0, Vec3::zeros(), Vec3::zeros());
+        let spheres = [load(0, -f, moments[0]), none, none, load(1, f, moments[1]), none, none];
+        let general =
+            dashpot_power(&Site::particle(0, 0.5), &Site::particle(1, 0.5), &f, &spheres, &model);
+        let key = (Feature::Particle(0), Feature::Particle(1));
+        assert_eq!(pair_dashpot_power(&key, &f, &moments, &model).to_bits(), general.to_bits());
+        let on_wall = [none, none, none, load(1, f, moments[1]), none, none];
+        let general =
+            dashpot_power(&Site::wall(wall), &Site::particle(1, 0.5), &f, &on_wall, &model);
+        let key = (Feature::Wall(wall), Feature::Particle(1));
+        assert_eq!(pair_dashpot_power(&key, &f, &moments, &model).to_bits(), general.to_bits());
+        assert!(general != 0.0);
     }
 
     #[test]

@@ -97,6 +97,10 @@ pub fn leapfrog_step(
     dt: Real,
 ) -> StepWork {
     let kick = 0.5 * (previous + dt);
+    // without damping (λ = 0) the damped acceleration is the free one and the damping's
+    // terms are +0, and a zero component of gravity adds +0 to its work: both are skipped,
+    // which leaves every sum as it was, bit for bit (a sum started at +0 never becomes −0)
+    let undamped = lambda == 0.0;
     let parts: Vec<StepWork> = (
         p.pos.par_chunks_mut(CHUNK),
         p.vel.par_chunks_mut(CHUNK),
@@ -119,13 +123,17 @@ pub fn leapfrog_step(
                     }
                     let v0 = vel[i][k];
                     let a_free = f[i][k] / mass[i] + gravity[k];
-                    let a = damped(a_free, v0, lambda, kick);
+                    let a = if undamped { a_free } else { damped(a_free, v0, lambda, kick) };
                     let v1 = v0 + a * kick;
                     vel[i][k] = v1;
                     work.kinetic_translation += 0.5 * mass[i] * v0 * v1;
-                    work.gravity += mass[i] * gravity[k] * v1 * dt;
-                    work.damping += mass[i] * (a_free - a) * 0.5 * v0 * kick;
-                    work.damping_next += mass[i] * (a_free - a) * 0.5 * v1 * kick;
+                    if gravity[k] != 0.0 {
+                        work.gravity += mass[i] * gravity[k] * v1 * dt;
+                    }
+                    if !undamped {
+                        work.damping += mass[i] * (a_free - a) * 0.5 * v0 * kick;
+                        work.damping_next += mass[i] * (a_free - a) * 0.5 * v1 * kick;
+                    }
                 }
                 for k in 0..3 {
                     if b.contains(Dofs::translation(k)) {
@@ -142,12 +150,14 @@ pub fn leapfrog_step(
                         }
                         let w0 = ang[i][k];
                         let a_free = t[i][k] / inertia[i];
-                        let a = damped(a_free, w0, lambda, kick);
+                        let a = if undamped { a_free } else { damped(a_free, w0, lambda, kick) };
                         let w1 = w0 + a * kick;
                         ang[i][k] = w1;
                         work.kinetic_rotation += 0.5 * inertia[i] * w0 * w1;
-                        work.damping += inertia[i] * (a_free - a) * 0.5 * w0 * kick;
-                        work.damping_next += inertia[i] * (a_free - a) * 0.5 * w1 * kick;
+                        if !undamped {
+                            work.damping += inertia[i] * (a_free - a) * 0.5 * w0 * kick;
+                            work.damping_next += inertia[i] * (a_free - a) * 0.5 * w1 * kick;
+                        }
                     }
                     for k in 0..3 {
                         if b.contains(Dofs::rotation(k)) {

@@ -17,7 +17,7 @@ use crate::contact::{
     birth_jump, geometry_of, new_contact, sphere_touching, wall_touching, BirthReport, Contact,
     SPHERE_OWNER, WALL_OWNER,
 };
-use crate::dashpots::{dashpot_power, shear_exit};
+use crate::dashpots::{pair_dashpot_power, shear_exit};
 use flexdem_contact::{
     update_frictional_contact, ContactForces, ContactKinematics, FrictionalContact,
     FrictionalParams,
@@ -108,10 +108,11 @@ pub(crate) struct PairScratch {
     pub(crate) outcomes: Vec<PairOutcome>,
     /// Indices of the pairs that started touching at the last update.
     pub(crate) fresh: Vec<usize>,
-    /// With dashpots (`update`'s `damped`), one per candidate pair: the node loads of its
-    /// dashpots' force alone (body 1's, body 2's), for their power after the kick; empty
-    /// without.
-    pub(crate) dashpot: Vec<[NodeLoad; 2]>,
+    /// With dashpots (`update`'s `damped`), one per candidate pair: the moments of its
+    /// dashpots' force alone about the two bodies' centres (body 1's, body 2's), for their
+    /// power after the kick (`dashpots::pair_dashpot_power`); written only for the touching
+    /// pairs whose dashpots pushed (the others are never read); empty without.
+    pub(crate) dashpot: Vec<[Vec3; 2]>,
 }
 
 /// The sites of the contact of `key` (a free sphere's radius from the model).
@@ -265,8 +266,7 @@ impl NeighbourList {
         scratch.outcomes.resize(self.keys.len(), PairOutcome::default());
         let pairs = self.keys.par_iter().zip(self.contacts.par_iter_mut());
         if damped {
-            let none = NodeLoad { node: 0, force: Vec3::zeros(), torque: Vec3::zeros() };
-            scratch.dashpot.resize(self.keys.len(), [none; 2]);
+            scratch.dashpot.resize(self.keys.len(), [Vec3::zeros(); 2]);
             pairs
                 .zip(scratch.outcomes.par_iter_mut())
                 .zip(scratch.dashpot.par_iter_mut())
@@ -310,8 +310,7 @@ impl NeighbourList {
         let mut report = BirthReport::default();
         scratch.fresh.clear();
         if damped {
-            let none = NodeLoad { node: 0, force: Vec3::zeros(), torque: Vec3::zeros() };
-            scratch.dashpot.resize(self.keys.len(), [none; 2]);
+            scratch.dashpot.resize(self.keys.len(), [Vec3::zeros(); 2]);
         }
         for (n, (key, slot)) in self.keys.iter().zip(self.contacts.iter_mut()).enumerate() {
             let dashpot = if damped { Some(&mut scratch.dashpot[n]) } else { None };
@@ -338,18 +337,14 @@ impl NeighbourList {
     /// after the kick).
     pub(crate) fn dashpot_dissipation(&self, scratch: &PairScratch, model: &Model) -> (Real, Real) {
         let (mut law, mut power) = (0.0, 0.0);
-        let none = NodeLoad { node: 0, force: Vec3::zeros(), torque: Vec3::zeros() };
-        for ((key, c), loads) in self.keys.iter().zip(&self.contacts).zip(&scratch.dashpot) {
+        for ((key, c), moments) in self.keys.iter().zip(&self.contacts).zip(&scratch.dashpot) {
             let Some(c) = c else { continue };
             let f = &c.forces.dashpot_force;
             if *f == Vec3::zeros() {
                 continue;
             }
-            let (site1, site2) = sites(model, key);
-            // body 1's load in slot 0, body 2's in slot 3 (`dashpot_power`'s layout)
-            let loads = [loads[0], none, none, loads[1], none, none];
             law += c.forces.dissipated.viscous;
-            power += dashpot_power(&site1, &site2, f, &loads, model);
+            power += pair_dashpot_power(key, f, moments, model);
         }
         (law, power)
     }
@@ -367,15 +362,16 @@ impl NeighbourList {
     }
 }
 
-/// One pair's step (see [`NeighbourList::update`]); with `dashpot`, the node loads of its
-/// dashpots' force alone go there (zero without one).
+/// One pair's step (see [`NeighbourList::update`]); with `dashpot`, the moments of its
+/// dashpots' force alone about the bodies' centres go there when they pushed (left as they
+/// were otherwise).
 fn step_pair(
     model: &Model,
     k: &Kinematics<'_>,
     key: &ContactKey,
     slot: &mut Option<PairContact>,
     dt: Real,
-    dashpot: Option<&mut [NodeLoad; 2]>,
+    dashpot: Option<&mut [Vec3; 2]>,
 ) -> PairOutcome {
     let mut out = PairOutcome::default();
     let touching = match *key {
@@ -479,30 +475,14 @@ fn step_pair(
                 torque: (g.point - center2).cross(&f.force_on_2),
             },
         ];
-        if let Some(d) = dashpot {
-            // the dashpots' force alone, shared the same way
-            let fd = f.dashpot_force;
-            *d = if fd == Vec3::zeros() {
-                [NodeLoad { node: 0, force: Vec3::zeros(), torque: Vec3::zeros() }; 2]
-            } else {
-                [
-                    NodeLoad {
-                        node: site1.nodes[0],
-                        force: -fd,
-                        torque: (g.point - center1).cross(&(-fd)),
-                    },
-                    NodeLoad {
-                        node: site2.nodes[0],
-                        force: fd,
-                        torque: (g.point - center2).cross(&fd),
-                    },
-                ]
-            };
+        let fd = f.dashpot_force;
+        if let Some(d) = dashpot.filter(|_| fd != Vec3::zeros()) {
+            // the dashpots' force alone, shared the same way: its moments (the forces are
+            // −fd on body 1 and fd on body 2)
+            *d = [(g.point - center1).cross(&(-fd)), (g.point - center2).cross(&fd)];
         }
         c.forces = f;
         c.point = g.point;
-    } else if let Some(d) = dashpot {
-        *d = [NodeLoad { node: 0, force: Vec3::zeros(), torque: Vec3::zeros() }; 2];
     }
     out
 }
