@@ -263,11 +263,16 @@ impl ContactPipeline {
         // (only for the elements in a pair: free spheres among themselves are not here)
         let unused = Hull::new([Vec3::zeros(); 3], 1, 0.0);
         let paired = |i: usize| collider.paired.get(i).copied().unwrap_or(true);
-        elements
-            .par_iter()
-            .enumerate()
-            .map(|(i, &e)| if paired(i) { hull(model, e) } else { unused })
-            .collect_into_vec(&mut self.scratch.hulls);
+        if collider.pairs.is_empty() {
+            // (free spheres and walls only: no hull is looked at)
+            self.scratch.hulls.clear();
+        } else {
+            elements
+                .par_iter()
+                .enumerate()
+                .map(|(i, &e)| if paired(i) { hull(model, e) } else { unused })
+                .collect_into_vec(&mut self.scratch.hulls);
+        }
         let hulls = &self.scratch.hulls;
         collider
             .pairs
