@@ -20,6 +20,12 @@ pub struct BroadPhase {
     entries: Vec<(u64, u32)>,
     large: Vec<u32>,
     chunks: Vec<Vec<(u32, u32)>>,
+    /// The boxes' largest extents (for the cell size).
+    extents: Vec<Real>,
+    /// Where each cell's entries start, then their end.
+    starts: Vec<usize>,
+    /// Each cell's range of entries.
+    buckets: Vec<(usize, usize)>,
 }
 
 /// Cell coordinates of a point for cells of size `h` anchored at `origin`.
@@ -47,9 +53,9 @@ fn cell_key(c: [i64; 3]) -> u64 {
 
 /// Cell size: twice the median of the boxes' largest extents, so that a typical box covers
 /// one or two cells per axis. Zero for no boxes.
-fn choose_cell_size(boxes: &[Aabb]) -> Real {
-    let mut extents: Vec<Real> =
-        boxes.iter().map(|b| (b.maxs - b.mins).max()).filter(|e| e.is_finite()).collect();
+fn choose_cell_size(boxes: &[Aabb], extents: &mut Vec<Real>) -> Real {
+    extents.clear();
+    extents.extend(boxes.iter().map(|b| (b.maxs - b.mins).max()).filter(|e| e.is_finite()));
     if extents.is_empty() {
         return 0.0;
     }
@@ -71,7 +77,7 @@ impl BroadPhase {
         pairs.clear();
         self.entries.clear();
         self.large.clear();
-        let h = choose_cell_size(boxes);
+        let h = choose_cell_size(boxes, &mut self.extents);
         if h == 0.0 {
             return;
         }
@@ -98,17 +104,26 @@ impl BroadPhase {
         self.entries.par_sort_unstable();
 
         // bucket boundaries, then pair tests per bucket in parallel, in bucket order
+        // (the buffers keep their memory from build to build: no allocation once grown)
         let entries = &self.entries;
-        let starts: Vec<usize> = (0..entries.len())
-            .filter(|&k| k == 0 || entries[k].0 != entries[k - 1].0)
-            .chain(std::iter::once(entries.len()))
-            .collect();
+        let starts = &mut self.starts;
+        starts.clear();
+        starts.extend(
+            (0..entries.len())
+                .filter(|&k| k == 0 || entries[k].0 != entries[k - 1].0)
+                .chain(std::iter::once(entries.len())),
+        );
         let chunk = (starts.len() / (4 * rayon::current_num_threads()).max(1)).max(64);
-        let bucket_ranges: Vec<(usize, usize)> = starts.windows(2).map(|w| (w[0], w[1])).collect();
-        self.chunks = bucket_ranges
-            .par_chunks(chunk)
-            .map(|ranges| {
-                let mut out = Vec::new();
+        self.buckets.clear();
+        self.buckets.extend(starts.windows(2).map(|w| (w[0], w[1])));
+        let bucket_ranges = &self.buckets;
+        let used = bucket_ranges.len().div_ceil(chunk);
+        if self.chunks.len() < used {
+            self.chunks.resize_with(used, Vec::new);
+        }
+        self.chunks[..used].par_iter_mut().zip(bucket_ranges.par_chunks(chunk)).for_each(
+            |(out, ranges)| {
+                out.clear();
                 for &(s, e) in ranges {
                     let key = entries[s].0;
                     for a in s..e {
@@ -131,10 +146,9 @@ impl BroadPhase {
                         }
                     }
                 }
-                out
-            })
-            .collect();
-        for c in &self.chunks {
+            },
+        );
+        for c in &self.chunks[..used] {
             pairs.extend_from_slice(c);
         }
         // large boxes against every box (each large-large pair once)

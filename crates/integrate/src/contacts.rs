@@ -187,45 +187,39 @@ fn candidate(model: &Model, a: Element, b: Element) -> Candidate {
     }
 }
 
-/// Collidable indices of the elements that contain `feature`.
-fn containing(collider: &Collider, adj: &Adjacency, feature: Feature, out: &mut Vec<u32>) {
-    out.clear();
-    match feature {
+/// Collidable indices of the elements that contain `feature` (no buffer): a free sphere's
+/// own element, or a node's connections then PFacets; an edge's connection then its PFacets;
+/// a face's PFacet; nothing for a wall.
+fn containing<'a>(
+    collider: &'a Collider,
+    adj: &'a Adjacency,
+    feature: Feature,
+) -> impl Iterator<Item = u32> + Clone + 'a {
+    let none: &[u32] = &[];
+    let (own, connections, pfacets) = match feature {
         Feature::Particle(i) => {
             let s = collider.sphere_element[i as usize];
             if s != NONE {
-                out.push(s);
+                (Some(s), none, none)
             } else {
-                out.extend(
-                    adj.node_connections
-                        .get(i as usize)
-                        .iter()
-                        .map(|&c| collider.connection_element[c as usize])
-                        .filter(|&e| e != NONE),
-                );
-                out.extend(
-                    adj.node_pfacets
-                        .get(i as usize)
-                        .iter()
-                        .map(|&f| collider.pfacet_element[f as usize]),
-                );
+                (None, adj.node_connections.get(i as usize), adj.node_pfacets.get(i as usize))
             }
         }
         Feature::Edge(c) => {
             let e = collider.connection_element[c as usize];
-            if e != NONE {
-                out.push(e);
-            }
-            out.extend(
-                adj.connection_pfacets
-                    .get(c as usize)
-                    .iter()
-                    .map(|&f| collider.pfacet_element[f as usize]),
-            );
+            ((e != NONE).then_some(e), none, adj.connection_pfacets.get(c as usize))
         }
-        Feature::Face(f) => out.push(collider.pfacet_element[f as usize]),
-        Feature::Wall(_) => {}
-    }
+        Feature::Face(f) => (Some(collider.pfacet_element[f as usize]), none, none),
+        Feature::Wall(_) => (None, none, none),
+    };
+    own.into_iter()
+        .chain(
+            connections
+                .iter()
+                .map(|&c| collider.connection_element[c as usize])
+                .filter(|&e| e != NONE),
+        )
+        .chain(pfacets.iter().map(|&f| collider.pfacet_element[f as usize]))
 }
 
 impl ContactPipeline {
@@ -318,29 +312,25 @@ impl ContactPipeline {
         let keys = &scratch.keys;
         (0..touching.len())
             .into_par_iter()
-            .map_init(
-                || (Vec::new(), Vec::new()),
-                |(side1, side2), i| {
-                    let ci = &touching[i];
-                    containing(collider, adj, ci.candidate.site1.feature, side1);
-                    containing(collider, adj, ci.candidate.site2.feature, side2);
-                    for &e1 in side1.iter() {
-                        for &e2 in side2.iter() {
-                            let key = (e1.min(e2), e1.max(e2));
-                            if let Ok(j) = keys.binary_search(&key) {
-                                if dominates(&touching[j], j, ci, i, &topology) {
-                                    return None;
-                                }
+            .map(|i| {
+                let ci = &touching[i];
+                let side2 = containing(collider, adj, ci.candidate.site2.feature);
+                for e1 in containing(collider, adj, ci.candidate.site1.feature) {
+                    for e2 in side2.clone() {
+                        let key = (e1.min(e2), e1.max(e2));
+                        if let Ok(j) = keys.binary_search(&key) {
+                            if dominates(&touching[j], j, ci, i, &topology) {
+                                return None;
                             }
                         }
                     }
-                    Some(oriented(Touching {
-                        candidate: ci.candidate,
-                        materials: (material(model, ci.element1), material(model, ci.element2)),
-                        owners: (owner(model, ci.element1), owner(model, ci.element2)),
-                    }))
-                },
-            )
+                }
+                Some(oriented(Touching {
+                    candidate: ci.candidate,
+                    materials: (material(model, ci.element1), material(model, ci.element2)),
+                    owners: (owner(model, ci.element1), owner(model, ci.element2)),
+                }))
+            })
             .collect_into_vec(&mut scratch.survivors);
 
         // walls touch every particle on their side (one contact per wall and particle)

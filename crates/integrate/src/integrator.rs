@@ -83,25 +83,40 @@ fn damped(a: Real, v: Real, lambda: Real, dt: Real) -> Real {
     }
 }
 
-/// Advances every particle by one leapfrog step of `dt` under `force` and `torque` (per
-/// particle), gravity and damping `lambda` ∈ [0, 1), after a step of `previous` (dt₀: the
-/// kick spans `(dt₀ + dt)/2`, see the module documentation). Returns the work of gravity and of the
-/// supports of blocked DOFs and the energy taken by damping, from mid-step velocities.
+/// What a leapfrog step is given besides the particles and their loads.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Leapfrog {
+    /// Gravity (m/s²).
+    pub gravity: Vec3,
+    /// Cundall's damping λ ∈ [0, 1).
+    pub damping: Real,
+    /// The step before, dt₀ (s): the kick spans `(dt₀ + dt)/2`.
+    pub previous: Real,
+    /// This step, dt (s).
+    pub dt: Real,
+}
+
+/// Advances every particle by one leapfrog step (`step`: dt after dt₀, gravity, damping λ;
+/// the kick spans `(dt₀ + dt)/2`, see the module documentation) under `force` and `torque`
+/// (per particle). Returns the work of gravity and of the supports of blocked DOFs and the
+/// energy taken by damping, from mid-step velocities; summed per chunk of [`CHUNK`]
+/// particles into `parts` (a buffer kept by the caller, so that a step allocates nothing),
+/// then in chunk order, whatever the number of threads.
 pub fn leapfrog_step(
     p: &mut Particles,
     force: &[Vec3],
     torque: &[Vec3],
-    gravity: &Vec3,
-    lambda: Real,
-    previous: Real,
-    dt: Real,
+    step: &Leapfrog,
+    parts: &mut Vec<StepWork>,
 ) -> StepWork {
+    let Leapfrog { gravity, damping: lambda, previous, dt } = *step;
+    let gravity = &gravity;
     let kick = 0.5 * (previous + dt);
     // without damping (λ = 0) the damped acceleration is the free one and the damping's
     // terms are +0, and a zero component of gravity adds +0 to its work: both are skipped,
     // which leaves every sum as it was, bit for bit (a sum started at +0 never becomes −0)
     let undamped = lambda == 0.0;
-    let parts: Vec<StepWork> = (
+    (
         p.pos.par_chunks_mut(CHUNK),
         p.vel.par_chunks_mut(CHUNK),
         p.ori.par_chunks_mut(CHUNK),
@@ -176,10 +191,10 @@ pub fn leapfrog_step(
             }
             work
         })
-        .collect();
+        .collect_into_vec(parts);
     let mut total = StepWork::default();
-    for w in parts {
-        total += w;
+    for w in parts.iter() {
+        total += *w;
     }
     total
 }
@@ -221,6 +236,20 @@ mod tests {
 
     /// Free fall: with the leapfrog, x(t) = x0 + v0·t + g·t²/2 + g·dt·t/2 exactly (the
     /// half-step offset of the velocity), so x matches the parabola to O(dt).
+    /// One step with a fresh buffer.
+    fn leapfrog(
+        p: &mut Particles,
+        f: &[Vec3],
+        t: &[Vec3],
+        gravity: &Vec3,
+        damping: Real,
+        previous: Real,
+        dt: Real,
+    ) -> StepWork {
+        let step = Leapfrog { gravity: *gravity, damping, previous, dt };
+        leapfrog_step(p, f, t, &step, &mut Vec::new())
+    }
+
     #[test]
     fn free_fall_follows_the_parabola() {
         let mut p = one_particle(2.0);
@@ -231,7 +260,7 @@ mod tests {
         let n = 1000;
         let zero = vec![Vec3::zeros(); 1];
         for _ in 0..n {
-            leapfrog_step(&mut p, &zero, &zero, &g, 0.0, dt, dt);
+            leapfrog(&mut p, &zero, &zero, &g, 0.0, dt, dt);
         }
         let t = dt * n as Real;
         // the leapfrog with v(−dt/2) = v0 gives x = v0 t + g t²/2 + g dt t/2
@@ -248,7 +277,7 @@ mod tests {
         p.vel[0] = Vec3::new(0.0, 0.0, 0.5);
         let f = vec![Vec3::new(1.0, 0.0, 100.0)];
         let t = vec![Vec3::new(5.0, 5.0, 5.0)];
-        leapfrog_step(&mut p, &f, &t, &Vec3::new(0.0, 0.0, -9.81), 0.0, 0.01, 0.01);
+        leapfrog(&mut p, &f, &t, &Vec3::new(0.0, 0.0, -9.81), 0.0, 0.01, 0.01);
         assert_eq!(p.vel[0][2], 0.5);
         assert!((p.pos[0][2] - 0.005).abs() < 1e-15);
         assert!((p.vel[0][0] - 0.01).abs() < 1e-15);
@@ -260,7 +289,7 @@ mod tests {
         let mut p = one_particle(1.0);
         let f = vec![Vec3::new(1.0, 0.0, 0.0)];
         let zero = vec![Vec3::zeros()];
-        let w = leapfrog_step(&mut p, &f, &zero, &Vec3::zeros(), 0.2, 0.1, 0.1);
+        let w = leapfrog(&mut p, &f, &zero, &Vec3::zeros(), 0.2, 0.1, 0.1);
         // accelerating along the motion: a·(1 − λ)
         assert!((p.vel[0][0] - 0.08).abs() < 1e-15);
         assert!(w.damping + w.damping_next > 0.0);
@@ -272,7 +301,7 @@ mod tests {
         p.ang_vel[0] = Vec3::new(0.0, 0.0, std::f64::consts::PI);
         let zero = vec![Vec3::zeros()];
         for _ in 0..200 {
-            leapfrog_step(&mut p, &zero, &zero, &Vec3::zeros(), 0.0, 0.005, 0.005);
+            leapfrog(&mut p, &zero, &zero, &Vec3::zeros(), 0.0, 0.005, 0.005);
         }
         // half a turn about z
         let x = p.ori[0] * Vec3::x();

@@ -32,7 +32,7 @@ pub use collider::Collider;
 pub use contacts::{Contact, Contacts};
 pub use energy::{Energy, EnergyAccount, EnergyWatch, PendingWork};
 pub use error::SimulationError;
-pub use integrator::{kinetic_energy, leapfrog_step, StepWork};
+pub use integrator::{kinetic_energy, leapfrog_step, Leapfrog, StepWork};
 pub use links::{LinkEvents, LinkUpdate, Links};
 pub use measures::{
     deviator_stress, love_weber_stress, mean_stress, membrane_sample_volume, normal_force,

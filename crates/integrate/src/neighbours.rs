@@ -116,6 +116,10 @@ pub(crate) struct PairScratch {
     /// power after the kick (`dashpots::pair_dashpot_power`); written only for the touching
     /// pairs whose dashpots pushed (the others are never read); empty without.
     pub(crate) dashpot: Vec<[Vec3; 2]>,
+    /// The boxes of contacts that ended, for the next births (one thread): a birth takes one
+    /// instead of allocating.
+    #[allow(clippy::vec_box, reason = "the boxes are what is kept, to serve again")]
+    spare: Vec<Box<PairContact>>,
 }
 
 /// The sites of the contact of `key` (a free sphere's radius from the model).
@@ -274,12 +278,12 @@ impl NeighbourList {
                 .zip(scratch.outcomes.par_iter_mut())
                 .zip(scratch.dashpot.par_iter_mut())
                 .for_each(|(((key, slot), out), d)| {
-                    *out = step_pair(model, &k, key, slot, dt, Some(d));
+                    *out = step_pair(model, &k, key, slot, dt, Some(d), None);
                 });
         } else {
-            pairs
-                .zip(scratch.outcomes.par_iter_mut())
-                .for_each(|((key, slot), out)| *out = step_pair(model, &k, key, slot, dt, None));
+            pairs.zip(scratch.outcomes.par_iter_mut()).for_each(|((key, slot), out)| {
+                *out = step_pair(model, &k, key, slot, dt, None, None);
+            });
         }
         let mut report = BirthReport::default();
         scratch.fresh.clear();
@@ -321,7 +325,7 @@ impl NeighbourList {
                 continue;
             }
             let dashpot = if damped { Some(&mut scratch.dashpot[n]) } else { None };
-            let o = step_pair(model, &k, key, slot, dt, dashpot);
+            let o = step_pair(model, &k, key, slot, dt, dashpot, Some(&mut scratch.spare));
             if o.fresh {
                 scratch.fresh.push(n);
             }
@@ -386,7 +390,9 @@ fn apart(p: &Particles, key: &ContactKey) -> bool {
 
 /// One pair's step (see [`NeighbourList::update`]); with `dashpot`, the moments of its
 /// dashpots' force alone about the bodies' centres go there when they pushed (left as they
-/// were otherwise).
+/// were otherwise); with `spare`, an ended contact's box goes there and a new contact takes
+/// one from there if it can.
+#[allow(clippy::vec_box, reason = "the boxes are what is kept, to serve again")]
 fn step_pair(
     model: &Model,
     k: &Kinematics<'_>,
@@ -394,6 +400,7 @@ fn step_pair(
     slot: &mut Option<Box<PairContact>>,
     dt: Real,
     dashpot: Option<&mut [Vec3; 2]>,
+    mut spare: Option<&mut Vec<Box<PairContact>>>,
 ) -> PairOutcome {
     let mut out = PairOutcome::default();
     let touching = match *key {
@@ -418,12 +425,19 @@ fn step_pair(
             out.born_energy = birth_jump(&c.params, &c.state, &g, dt);
             out.born_deep = g.overlap - approach * dt > 1e-12 * reach;
             out.fresh = true;
-            *slot = Some(Box::new(PairContact {
+            let made = PairContact {
                 params: c.params,
                 state: c.state,
                 forces: ContactForces::default(),
                 point: c.point,
-            }));
+            };
+            *slot = Some(match spare.as_mut().and_then(|s| s.pop()) {
+                Some(mut reused) => {
+                    *reused = made;
+                    reused
+                }
+                None => Box::new(made),
+            });
         }
         (None, Some(c)) => {
             out.ended_dissipation = c.state.dissipated.friction;
@@ -445,7 +459,9 @@ fn step_pair(
             } else {
                 out.released -= w;
             }
-            *slot = None;
+            if let (Some(ended), Some(spare)) = (slot.take(), spare.as_mut()) {
+                spare.push(ended);
+            }
         }
         _ => {}
     }
@@ -586,30 +602,29 @@ pub(crate) fn merged<'a>(
 }
 
 /// The indices of `fresh_general` (into the general list) and `fresh_pairs` (into the
-/// neighbour list), both sorted by key, merged in key order.
-pub(crate) fn merged_fresh(
-    general: &[Contact],
-    fresh_general: &[usize],
-    pairs: &NeighbourList,
-    fresh_pairs: &[usize],
-) -> Vec<Pick> {
-    let mut out = Vec::with_capacity(fresh_general.len() + fresh_pairs.len());
+/// neighbour list), both sorted by key, merged in key order (no buffer).
+pub(crate) fn merged_fresh<'a>(
+    general: &'a [Contact],
+    fresh_general: &'a [usize],
+    pairs: &'a NeighbourList,
+    fresh_pairs: &'a [usize],
+) -> impl Iterator<Item = Pick> + 'a {
     let (mut a, mut b) = (0, 0);
-    while a < fresh_general.len() || b < fresh_pairs.len() {
+    std::iter::from_fn(move || {
         let take_general = match (fresh_general.get(a), fresh_pairs.get(b)) {
             (Some(&g), Some(&n)) => general[g].key() < pairs.keys[n],
             (Some(_), None) => true,
-            _ => false,
+            (None, Some(_)) => false,
+            (None, None) => return None,
         };
         if take_general {
-            out.push(Pick::General(fresh_general[a]));
             a += 1;
+            Some(Pick::General(fresh_general[a - 1]))
         } else {
-            out.push(Pick::Pair(fresh_pairs[b]));
             b += 1;
+            Some(Pick::Pair(fresh_pairs[b - 1]))
         }
-    }
-    out
+    })
 }
 
 #[cfg(test)]

@@ -5,6 +5,7 @@
 
 use crate::collider::Collider;
 use crate::contacts::ContactPipeline;
+use crate::integrator::StepWork;
 use crate::servo::WallLoads;
 use crate::state::State;
 use crate::timers::Timers;
@@ -32,6 +33,8 @@ pub(crate) struct Pipeline {
     pub(crate) external_torque: Vec<Vec3>,
     /// Force and contact stiffness of the bodies on each wall at the last step.
     pub(crate) walls: WallLoads,
+    /// The leapfrog's per-chunk energy sums (`leapfrog_step`'s buffer).
+    pub(crate) step_work: Vec<StepWork>,
     /// Per-stage wall-clock times.
     pub(crate) timers: Timers,
     /// The user's hook, if any.
@@ -54,6 +57,7 @@ impl Pipeline {
                 force: vec![Vec3::zeros(); state.model.walls.len()],
                 stiffness: vec![0.0; state.model.walls.len()],
             },
+            step_work: Vec::new(),
             timers: Timers::default(),
             force_hook: None,
         }

@@ -6,7 +6,7 @@ use crate::contacts::Contact;
 use crate::culprit::describe;
 use crate::dashpots::damped_stiffness_factor;
 use crate::energy::PendingWork;
-use crate::integrator::{leapfrog_step, StepWork};
+use crate::integrator::{leapfrog_step, Leapfrog, StepWork};
 use crate::links::LinkUpdate;
 use crate::neighbours::{merged_fresh, Pick};
 use crate::pressure::add_pressure_forces;
@@ -29,7 +29,9 @@ const FIXED_DT_WARNING: &str = "the fixed time step";
 impl Simulation {
     /// Estimates the critical step from the links (and later the contacts) and sets `dt`.
     pub fn update_time_step(&mut self) -> Result<(), SimulationError> {
-        let mut k = StiffnessSums::new(self.state.model.particles.len());
+        // the last estimate's sums, zeroed: their memory serves again
+        let mut k = std::mem::take(&mut self.state.clock.stiffness);
+        k.reset(self.state.model.particles.len());
         let p = &self.state.model.particles;
         for (l, nodes) in self.state.links.nodes.iter().enumerate() {
             if self.state.links.state[l].status == flexdem_contact::LinkStatus::Broken {
@@ -250,14 +252,13 @@ impl Simulation {
     fn integration_stage(&mut self, previous: Real, dt: Real, walls: WallPower) -> StepWork {
         let t0 = self.pipeline.timers.start();
         let g = self.state.settings.gravity;
+        let step = Leapfrog { gravity: g, damping: self.state.settings.damping, previous, dt };
         let mut work = leapfrog_step(
             &mut self.state.model.particles,
             &self.pipeline.force,
             &self.pipeline.torque,
-            &g,
-            self.state.settings.damping,
-            previous,
-            dt,
+            &step,
+            &mut self.pipeline.step_work,
         );
         work.boundary += 0.5 * walls.before * previous;
         work.boundary_next += 0.5 * walls.after * dt;

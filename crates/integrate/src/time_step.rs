@@ -23,6 +23,14 @@ impl StiffnessSums {
         StiffnessSums { translational: vec![Vec3::zeros(); n], rotational: vec![Vec3::zeros(); n] }
     }
 
+    /// Zero sums for `n` particles, in the memory these sums already hold.
+    pub fn reset(&mut self, n: usize) {
+        for sums in [&mut self.translational, &mut self.rotational] {
+            sums.clear();
+            sums.resize(n, Vec3::zeros());
+        }
+    }
+
     /// Adds a spring pair of normal stiffness `kn` and shear stiffness `ks` along unit normal
     /// `n`, with lever arm `lever` from the particle to the spring, and rotational springs
     /// `kt` (twist, about n) and `kb` (bending), to particle `i`:
