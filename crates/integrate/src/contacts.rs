@@ -9,7 +9,7 @@ pub(crate) use crate::contact::BirthReport;
 pub use crate::contact::Contact;
 use crate::contact::{birth_jump, geometry, material, new_contact, owner, wall_touching, Touching};
 use crate::dashpots::{dashpot_power, shear_exit};
-use crate::neighbours::{merged, NeighbourList, PairScratch, Pick, Sink};
+use crate::neighbours::{merged, merged_from, NeighbourList, PairScratch, Pick, Sink};
 use crate::prefilter::{hull, proven_apart, Hull};
 use flexdem_contact::{update_frictional_contact, ContactDamping, ContactKinematics};
 use flexdem_elements::pairs::{self, Candidate, ConnectionRef, PFacetRef, SphereRef};
@@ -694,6 +694,18 @@ impl Contacts {
             + self.pairs.dissipated()
     }
 
+    /// `(elastic_energy(), dissipated())`, the same sums in one pass over the free spheres'
+    /// pairs (which live apart in memory: one visit each instead of two).
+    pub(crate) fn energy_sums(&self) -> (Real, Real) {
+        let (elastic, friction) = self.pairs.energy_sums();
+        (
+            self.list.iter().map(|c| c.forces.elastic_energy).sum::<Real>() + elastic,
+            self.ended_dissipation
+                + self.list.iter().map(|c| c.state.dissipated.friction).sum::<Real>()
+                + friction,
+        )
+    }
+
     /// Number of contacts (both lists).
     pub fn len(&self) -> usize {
         self.list.len() + self.pairs.len()
@@ -718,9 +730,11 @@ impl Contacts {
     }
 
     /// Calls `f(wall, force on the body, normal force, kn)` on every wall contact, in key
-    /// order (nothing made: the walls' loads are summed every step).
+    /// order (nothing made: the walls' loads are summed every step). The keys sort walls
+    /// last: only the two lists' tails are looked at.
     pub(crate) fn for_each_on_wall(&self, mut f: impl FnMut(u32, &Vec3, Real, Real)) {
-        for pick in merged(&self.list, &self.pairs) {
+        let g = self.list.partition_point(|c| !matches!(c.key().0, Feature::Wall(_)));
+        for pick in merged_from(&self.list, &self.pairs, g, self.pairs.first_wall()) {
             let (key, forces, params) = match pick {
                 Pick::General(n) => {
                     let c = &self.list[n];

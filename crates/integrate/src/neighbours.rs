@@ -203,6 +203,19 @@ impl NeighbourList {
         self.touching().map(|(_, c)| c.state.dissipated.friction).sum()
     }
 
+    /// `(elastic_energy(), dissipated())` in one pass over the contacts (the same sums, in
+    /// the same order, from −0 as `Iterator::sum`).
+    pub(crate) fn energy_sums(&self) -> (Real, Real) {
+        self.touching().fold((-0.0, -0.0), |(e, f), (_, c)| {
+            (e + c.forces.elastic_energy, f + c.state.dissipated.friction)
+        })
+    }
+
+    /// The index of the first candidate with a wall (the keys sort walls last).
+    pub(crate) fn first_wall(&self) -> usize {
+        self.keys.partition_point(|k| !matches!(k.0, Feature::Wall(_)))
+    }
+
     /// Whether every pair refers to particles and walls of a model of `particles` particles
     /// and `walls` walls, free spheres against free spheres or walls.
     pub(crate) fn fits(&self, particles: usize, walls: usize) -> bool {
@@ -376,7 +389,7 @@ impl NeighbourList {
 /// Whether the pair of `key` is two spheres whose centres are farther apart than their radii
 /// with 1e-9 to spare: most candidates do not touch, and this conservative test (the exact
 /// one is `r_i + r_j − |d| > 0`) tells them first. False for a wall's pair.
-#[inline]
+#[inline(always)]
 fn apart(p: &Particles, key: &ContactKey) -> bool {
     match *key {
         (Feature::Particle(i), Feature::Particle(j)) => {
@@ -577,8 +590,16 @@ pub(crate) fn merged<'a>(
     general: &'a [Contact],
     pairs: &'a NeighbourList,
 ) -> impl Iterator<Item = Pick> + 'a {
-    let mut g = 0;
-    let mut n = 0;
+    merged_from(general, pairs, 0, 0)
+}
+
+/// [`merged`] from the general contact `g` and the candidate pair `n` on.
+pub(crate) fn merged_from<'a>(
+    general: &'a [Contact],
+    pairs: &'a NeighbourList,
+    mut g: usize,
+    mut n: usize,
+) -> impl Iterator<Item = Pick> + 'a {
     std::iter::from_fn(move || {
         while n < pairs.keys.len() && pairs.contacts[n].is_none() {
             n += 1;

@@ -363,8 +363,7 @@ impl Simulation {
         e.kinetic_translation = work.kinetic_translation;
         e.kinetic_rotation = work.kinetic_rotation;
         e.elastic_links = links.elastic_energy;
-        e.elastic_contacts = self.state.contacts.elastic_energy();
-        e.friction = self.state.contacts.dissipated();
+        (e.elastic_contacts, e.friction) = self.state.contacts.energy_sums();
         e.links_dissipated = links.dissipated;
         e.gravity_work += self.state.energy.pending.gravity;
         e.load_work += self.state.energy.pending.load + load_work;
