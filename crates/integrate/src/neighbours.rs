@@ -57,12 +57,15 @@ pub struct NeighbourList {
     /// pair that does not costs the pointer only: 8 bytes per candidate instead of a
     /// contact's size, and a rebuild moves pointers).
     contacts: Vec<Option<Box<PairContact>>>,
+    /// `energy_sums` as the last update in one pass found them (its pass visits every
+    /// contact anyway); `None` when not known (after a parallel update, a clear, a load).
+    sums: Option<(Real, Real)>,
 }
 
 impl From<Vec<(ContactKey, PairContact)>> for NeighbourList {
     fn from(touching: Vec<(ContactKey, PairContact)>) -> Self {
         let (keys, contacts) = touching.into_iter().map(|(k, c)| (k, Some(Box::new(c)))).unzip();
-        NeighbourList { keys, contacts }
+        NeighbourList { keys, contacts, sums: None }
     }
 }
 
@@ -191,6 +194,7 @@ impl NeighbourList {
     pub(crate) fn clear(&mut self) {
         self.keys.clear();
         self.contacts.clear();
+        self.sums = None;
     }
 
     /// Elastic energy stored at the last update.
@@ -206,8 +210,10 @@ impl NeighbourList {
     /// `(elastic_energy(), dissipated())` in one pass over the contacts (the same sums, in
     /// the same order, from −0 as `Iterator::sum`).
     pub(crate) fn energy_sums(&self) -> (Real, Real) {
-        self.touching().fold((-0.0, -0.0), |(e, f), (_, c)| {
-            (e + c.forces.elastic_energy, f + c.state.dissipated.friction)
+        self.sums.unwrap_or_else(|| {
+            self.touching().fold((-0.0, -0.0), |(e, f), (_, c)| {
+                (e + c.forces.elastic_energy, f + c.state.dissipated.friction)
+            })
         })
     }
 
@@ -283,6 +289,7 @@ impl NeighbourList {
     ) -> BirthReport {
         let p = &model.particles;
         let k = Kinematics { pos: &p.pos, vel: &p.vel, ang_vel: &p.ang_vel };
+        self.sums = None;
         scratch.outcomes.resize(self.keys.len(), PairOutcome::default());
         let pairs = self.keys.par_iter().zip(self.contacts.par_iter_mut());
         if damped {
@@ -332,6 +339,9 @@ impl NeighbourList {
         if damped {
             scratch.dashpot.resize(self.keys.len(), [Vec3::zeros(); 2]);
         }
+        // the touching pairs' elastic energy and friction after their update, in key order
+        // from −0: `energy_sums` without a second visit
+        let (mut elastic, mut friction) = (-0.0, -0.0);
         for (n, (key, slot)) in self.keys.iter().zip(self.contacts.iter_mut()).enumerate() {
             if slot.is_none() && apart(p, key) {
                 // (what step_pair would say at more cost: nothing happened)
@@ -346,12 +356,15 @@ impl NeighbourList {
             report.released += o.released;
             report.born_deep += u64::from(o.born_deep);
             *ended_dissipation += o.ended_dissipation;
-            if slot.is_some() {
+            if let Some(c) = slot {
+                elastic += c.forces.elastic_energy;
+                friction += c.state.dissipated.friction;
                 sink(Sink::Before(key));
                 let first = usize::from(matches!(key.0, Feature::Wall(_)));
                 o.loads[first..].iter().for_each(|l| sink(Sink::Load(l)));
             }
         }
+        self.sums = Some((elastic, friction));
         report
     }
 
