@@ -633,10 +633,16 @@ impl ContactPipeline {
             return report;
         }
         let report = contacts.pairs.update(model, dt, self.damped, &mut self.pairs, ended);
+        // the touching pairs' loads come in the order `merged` picks them
+        let mut pair_loads = contacts.pairs.touching_loads(&self.pairs);
         for pick in merged(&contacts.list, &contacts.pairs) {
             match pick {
                 Pick::General(n) => general_loads(n).for_each(&mut add),
-                Pick::Pair(n) => contacts.pairs.loads(&self.pairs, n).for_each(&mut add),
+                Pick::Pair(n) => {
+                    let (m, loads) = pair_loads.next().expect("a touching pair's loads");
+                    debug_assert_eq!(m, n);
+                    loads.iter().for_each(&mut add);
+                }
             }
         }
         report

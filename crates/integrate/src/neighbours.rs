@@ -107,11 +107,16 @@ impl Default for PairOutcome {
     }
 }
 
+/// Candidate pairs per chunk of a parallel update (fixed: the work is split the same way
+/// whatever the number of threads, and the outcomes are read in pair order).
+const PAIR_CHUNK: usize = 4096;
+
 /// Buffers of [`NeighbourList::update`] (nothing here is saved).
 #[derive(Clone, Debug, Default)]
 pub(crate) struct PairScratch {
-    /// One outcome per candidate pair of the last update.
-    pub(crate) outcomes: Vec<PairOutcome>,
+    /// The outcomes of the last (parallel) update, per chunk of [`PAIR_CHUNK`] candidates:
+    /// those of the pairs it stepped (not the far-apart ones), with their index, in order.
+    chunks: Vec<Vec<(u32, PairOutcome)>>,
     /// Indices of the pairs that started touching at the last update.
     pub(crate) fresh: Vec<usize>,
     /// With dashpots (`update`'s `damped`), one per candidate pair: the moments of its
@@ -274,9 +279,9 @@ impl NeighbourList {
     /// One step of every pair (in parallel): whether it touches; a new contact made as the
     /// general pipeline makes it (`contacts::new_contact`) with its birth accounted for; an
     /// ended one's friction, elastic and shear energy accounted for; then the contact law
-    /// and the node loads of every touching pair, into `scratch.outcomes` (one per pair), and
-    /// when `damped` (a contact may have dashpots) the node loads of the dashpots' force
-    /// alone into `scratch.dashpot`. `dt` is the step just done (the contact law's and the
+    /// and the node loads of every touching pair, into `scratch.chunks` (the outcomes of the
+    /// pairs that are not far apart, in order, per chunk), and when `damped` (a contact may
+    /// have dashpots) the moments of the dashpots' force alone into `scratch.dashpot`. `dt` is the step just done (the contact law's and the
     /// births' step). Returns what the births and ends moved the energy balance by, and the
     /// ended pairs' friction in `ended_dissipation`.
     pub(crate) fn update(
@@ -290,26 +295,49 @@ impl NeighbourList {
         let p = &model.particles;
         let k = Kinematics { pos: &p.pos, vel: &p.vel, ang_vel: &p.ang_vel };
         self.sums = None;
-        scratch.outcomes.resize(self.keys.len(), PairOutcome::default());
-        let pairs = self.keys.par_iter().zip(self.contacts.par_iter_mut());
+        let used = self.keys.len().div_ceil(PAIR_CHUNK);
+        if scratch.chunks.len() < used {
+            scratch.chunks.resize_with(used, Vec::new);
+        }
+        // one chunk: its pairs that are not far apart stepped, their outcomes kept in order
+        let step_chunk = |base: usize,
+                          keys: &[ContactKey],
+                          slots: &mut [Option<Box<PairContact>>],
+                          mut dashpots: Option<&mut [[Vec3; 2]]>,
+                          out: &mut Vec<(u32, PairOutcome)>| {
+            out.clear();
+            for (i, (key, slot)) in keys.iter().zip(slots.iter_mut()).enumerate() {
+                if slot.is_none() && apart(p, key) {
+                    continue;
+                }
+                let d = dashpots.as_mut().map(|d| &mut d[i]);
+                out.push(((base + i) as u32, step_pair(model, &k, key, slot, dt, d, None)));
+            }
+        };
+        let chunks = self
+            .keys
+            .par_chunks(PAIR_CHUNK)
+            .zip(self.contacts.par_chunks_mut(PAIR_CHUNK))
+            .zip(scratch.chunks[..used].par_iter_mut())
+            .enumerate();
         if damped {
             scratch.dashpot.resize(self.keys.len(), [Vec3::zeros(); 2]);
-            pairs
-                .zip(scratch.outcomes.par_iter_mut())
-                .zip(scratch.dashpot.par_iter_mut())
-                .for_each(|(((key, slot), out), d)| {
-                    *out = step_pair(model, &k, key, slot, dt, Some(d), None);
-                });
+            chunks.zip(scratch.dashpot.par_chunks_mut(PAIR_CHUNK)).for_each(
+                |((c, ((keys, slots), out)), d)| {
+                    step_chunk(c * PAIR_CHUNK, keys, slots, Some(d), out);
+                },
+            );
         } else {
-            pairs.zip(scratch.outcomes.par_iter_mut()).for_each(|((key, slot), out)| {
-                *out = step_pair(model, &k, key, slot, dt, None, None);
+            chunks.for_each(|(c, ((keys, slots), out))| {
+                step_chunk(c * PAIR_CHUNK, keys, slots, None, out);
             });
         }
+        // in pair order (a pair passed over adds nothing: its outcome would be all zeros)
         let mut report = BirthReport::default();
         scratch.fresh.clear();
-        for (n, o) in scratch.outcomes.iter().enumerate() {
+        for &(n, ref o) in scratch.chunks[..used].iter().flatten() {
             if o.fresh {
-                scratch.fresh.push(n);
+                scratch.fresh.push(n as usize);
             }
             report.born_energy += o.born_energy;
             report.released += o.released;
@@ -386,16 +414,21 @@ impl NeighbourList {
         (law, power)
     }
 
-    /// The node loads of the touching pair at `index` at the last update: body 1's (none for
-    /// a wall) and body 2's.
-    pub(crate) fn loads<'a>(
-        &self,
+    /// The touching pairs after the last (parallel) update, in order: each one's index and
+    /// node loads (body 1's, none for a wall, and body 2's), as `merged` picks them.
+    pub(crate) fn touching_loads<'a>(
+        &'a self,
         scratch: &'a PairScratch,
-        index: usize,
-    ) -> impl Iterator<Item = &'a NodeLoad> + 'a {
-        let first = !matches!(self.keys[index].0, Feature::Wall(_));
-        let loads = &scratch.outcomes[index].loads;
-        loads[usize::from(!first)..].iter()
+    ) -> impl Iterator<Item = (usize, &'a [NodeLoad])> + 'a {
+        let used = self.keys.len().div_ceil(PAIR_CHUNK);
+        scratch.chunks[..used.min(scratch.chunks.len())]
+            .iter()
+            .flatten()
+            .filter(move |(n, _)| self.contacts[*n as usize].is_some())
+            .map(move |(n, o)| {
+                let wall = matches!(self.keys[*n as usize].0, Feature::Wall(_));
+                (*n as usize, &o.loads[usize::from(wall)..])
+            })
     }
 }
 
