@@ -107,6 +107,29 @@ impl Default for PairOutcome {
     }
 }
 
+/// A pair whose dashpots pushed at the last update: its index, the dashpots' force on body
+/// 2, its moments about the two centres, and the law's own count of their dissipation.
+#[derive(Clone, Copy, Debug)]
+struct Pushed {
+    index: u32,
+    force: Vec3,
+    moments: [Vec3; 2],
+    viscous: Real,
+}
+
+impl Pushed {
+    /// The record of pair `index` if its dashpots pushed (`moments` as `step_pair` wrote them).
+    fn of(index: usize, c: &PairContact, moments: &[Vec3; 2]) -> Option<Pushed> {
+        let force = c.forces.dashpot_force;
+        (force != Vec3::zeros()).then_some(Pushed {
+            index: index as u32,
+            force,
+            moments: *moments,
+            viscous: c.forces.dissipated.viscous,
+        })
+    }
+}
+
 /// Candidate pairs per chunk of a parallel update (fixed: the work is split the same way
 /// whatever the number of threads, and the outcomes are read in pair order).
 const PAIR_CHUNK: usize = 4096;
@@ -119,11 +142,14 @@ pub(crate) struct PairScratch {
     chunks: Vec<Vec<(u32, PairOutcome)>>,
     /// Indices of the pairs that started touching at the last update.
     pub(crate) fresh: Vec<usize>,
-    /// With dashpots (`update`'s `damped`), one per candidate pair: the moments of its
-    /// dashpots' force alone about the two bodies' centres (body 1's, body 2's), for their
-    /// power after the kick (`dashpots::pair_dashpot_power`); written only for the touching
-    /// pairs whose dashpots pushed (the others are never read); empty without.
+    /// With dashpots and more than one thread (`update`'s `damped`), one per candidate pair:
+    /// the moments of its dashpots' force alone about the two bodies' centres (body 1's,
+    /// body 2's), for their power after the kick (`dashpots::pair_dashpot_power`); written
+    /// only for the touching pairs whose dashpots pushed (the others are never read).
     pub(crate) dashpot: Vec<[Vec3; 2]>,
+    /// The touching pairs whose dashpots pushed at the last update, in key order: what
+    /// `dashpot_dissipation` needs, gathered while each contact was at hand.
+    pushed: Vec<Pushed>,
     /// The boxes of contacts that ended, for the next births (one thread): a birth takes one
     /// instead of allocating.
     #[allow(clippy::vec_box, reason = "the boxes are what is kept, to serve again")]
@@ -281,9 +307,10 @@ impl NeighbourList {
     /// ended one's friction, elastic and shear energy accounted for; then the contact law
     /// and the node loads of every touching pair, into `scratch.chunks` (the outcomes of the
     /// pairs that are not far apart, in order, per chunk), and when `damped` (a contact may
-    /// have dashpots) the moments of the dashpots' force alone into `scratch.dashpot`. `dt` is the step just done (the contact law's and the
-    /// births' step). Returns what the births and ends moved the energy balance by, and the
-    /// ended pairs' friction in `ended_dissipation`.
+    /// have dashpots) the moments of the dashpots' force alone into `scratch.dashpot` and
+    /// the records of the pairs whose dashpots pushed. `dt` is the step just done (the
+    /// contact law's and the births' step). Returns what the births and ends moved the
+    /// energy balance by, and the ended pairs' friction in `ended_dissipation`.
     pub(crate) fn update(
         &mut self,
         model: &Model,
@@ -332,6 +359,16 @@ impl NeighbourList {
                 step_chunk(c * PAIR_CHUNK, keys, slots, None, out);
             });
         }
+        scratch.pushed.clear();
+        if damped {
+            let moments = &scratch.dashpot;
+            scratch.pushed.extend(
+                self.contacts
+                    .iter()
+                    .enumerate()
+                    .filter_map(|(n, c)| Pushed::of(n, c.as_deref()?, &moments[n])),
+            );
+        }
         // in pair order (a pair passed over adds nothing: its outcome would be all zeros)
         let mut report = BirthReport::default();
         scratch.fresh.clear();
@@ -350,7 +387,7 @@ impl NeighbourList {
     /// [`NeighbourList::update`] in one pass on this thread, giving `sink` each touching
     /// pair's key (`Sink::Before`), then its node loads (`Sink::Load`), in key order: the
     /// loads are summed as they come (no buffer), with the same results (and, when `damped`,
-    /// the dashpots' node loads in `scratch.dashpot`, as `update` keeps them).
+    /// the records of the pairs whose dashpots pushed, as `update` keeps them).
     pub(crate) fn update_in_order(
         &mut self,
         model: &Model,
@@ -364,9 +401,7 @@ impl NeighbourList {
         let k = Kinematics { pos: &p.pos, vel: &p.vel, ang_vel: &p.ang_vel };
         let mut report = BirthReport::default();
         scratch.fresh.clear();
-        if damped {
-            scratch.dashpot.resize(self.keys.len(), [Vec3::zeros(); 2]);
-        }
+        scratch.pushed.clear();
         // the touching pairs' elastic energy and friction after their update, in key order
         // from −0: `energy_sums` without a second visit
         let (mut elastic, mut friction) = (-0.0, -0.0);
@@ -375,7 +410,8 @@ impl NeighbourList {
                 // (what step_pair would say at more cost: nothing happened)
                 continue;
             }
-            let dashpot = if damped { Some(&mut scratch.dashpot[n]) } else { None };
+            let mut moments = [Vec3::zeros(); 2];
+            let dashpot = if damped { Some(&mut moments) } else { None };
             let o = step_pair(model, &k, key, slot, dt, dashpot, Some(&mut scratch.spare));
             if o.fresh {
                 scratch.fresh.push(n);
@@ -385,6 +421,9 @@ impl NeighbourList {
             report.born_deep += u64::from(o.born_deep);
             *ended_dissipation += o.ended_dissipation;
             if let Some(c) = slot {
+                if damped {
+                    scratch.pushed.extend(Pushed::of(n, c, &moments));
+                }
                 elastic += c.forces.elastic_energy;
                 friction += c.state.dissipated.friction;
                 sink(Sink::Before(key));
@@ -402,14 +441,9 @@ impl NeighbourList {
     /// after the kick).
     pub(crate) fn dashpot_dissipation(&self, scratch: &PairScratch, model: &Model) -> (Real, Real) {
         let (mut law, mut power) = (0.0, 0.0);
-        for ((key, c), moments) in self.keys.iter().zip(&self.contacts).zip(&scratch.dashpot) {
-            let Some(c) = c else { continue };
-            let f = &c.forces.dashpot_force;
-            if *f == Vec3::zeros() {
-                continue;
-            }
-            law += c.forces.dissipated.viscous;
-            power += pair_dashpot_power(key, f, moments, model);
+        for d in &scratch.pushed {
+            law += d.viscous;
+            power += pair_dashpot_power(&self.keys[d.index as usize], &d.force, &d.moments, model);
         }
         (law, power)
     }
