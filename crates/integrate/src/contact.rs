@@ -5,7 +5,8 @@
 
 use crate::dashpots::site_mass;
 use flexdem_contact::{
-    effective_mass, ContactDamping, ContactForces, FrictionalContact, FrictionalParams,
+    effective_mass, ContactDamping, ContactForces, ContactKinematics, FrictionalContact,
+    FrictionalParams,
 };
 use flexdem_elements::pairs::{self, Candidate, SphereRef};
 use flexdem_elements::touching::Element;
@@ -221,6 +222,16 @@ fn birth_normal(model: &Model, c: &Candidate) -> Vec3 {
         -n
     } else {
         n
+    }
+}
+
+/// What the contact law reads of a contact geometry.
+pub(crate) fn law_kinematics(g: &ContactGeometry) -> ContactKinematics {
+    ContactKinematics {
+        normal: g.normal,
+        overlap: g.overlap,
+        relative_velocity: g.relative_velocity,
+        spin_about_normal: g.spin_about_normal,
     }
 }
 

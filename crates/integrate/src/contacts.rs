@@ -7,11 +7,13 @@
 use crate::collider::{Collider, NONE};
 pub(crate) use crate::contact::BirthReport;
 pub use crate::contact::Contact;
-use crate::contact::{birth_jump, geometry, material, new_contact, owner, wall_touching, Touching};
+use crate::contact::{
+    birth_jump, geometry, law_kinematics, material, new_contact, owner, wall_touching, Touching,
+};
 use crate::dashpots::{dashpot_power, shear_exit};
 use crate::neighbours::{merged, merged_from, NeighbourList, PairScratch, Pick, Sink};
 use crate::prefilter::{hull, proven_apart, Hull};
-use flexdem_contact::{update_frictional_contact, ContactDamping, ContactKinematics};
+use flexdem_contact::{update_frictional_contact, ContactDamping};
 use flexdem_elements::pairs::{self, Candidate, ConnectionRef, PFacetRef, SphereRef};
 use flexdem_elements::touching::{dominates, Element, ElementCandidate, Topology};
 use flexdem_elements::virtual_sphere::{distribute_force, Feature, Kinematics, NodeLoad, Site};
@@ -556,17 +558,7 @@ impl ContactPipeline {
         self.loads.resize(contacts.list.len(), zero);
         let update = |c: &mut Contact, loads: &mut [NodeLoad; 6]| {
             let (vs1, vs2, g) = geometry(model, &k, c);
-            let f = update_frictional_contact(
-                &c.params,
-                &mut c.state,
-                &ContactKinematics {
-                    normal: g.normal,
-                    overlap: g.overlap,
-                    relative_velocity: g.relative_velocity,
-                    spin_about_normal: g.spin_about_normal,
-                },
-                dt,
-            );
+            let f = update_frictional_contact(&c.params, &mut c.state, &law_kinematics(&g), dt);
             let l1 = distribute_force(&c.site1, &p.pos, &vs1.center, &g.point, &(-f.force_on_2));
             let l2 = distribute_force(&c.site2, &p.pos, &vs2.center, &g.point, &f.force_on_2);
             loads[..3].copy_from_slice(&l1);

@@ -14,13 +14,12 @@
 //! depend on which pipeline a contact went through, nor on the thread count.
 
 use crate::contact::{
-    birth_jump, geometry_of, new_contact, sphere_touching, wall_touching, BirthReport, Contact,
-    SPHERE_OWNER, WALL_OWNER,
+    birth_jump, geometry_of, law_kinematics, new_contact, sphere_touching, wall_touching,
+    BirthReport, Contact, SPHERE_OWNER, WALL_OWNER,
 };
 use crate::dashpots::{pair_dashpot_power, shear_exit};
 use flexdem_contact::{
-    update_frictional_contact, ContactForces, ContactKinematics, FrictionalContact,
-    FrictionalParams,
+    update_frictional_contact, ContactForces, FrictionalContact, FrictionalParams,
 };
 use flexdem_elements::virtual_sphere::{ContactGeometry, Feature, Kinematics, NodeLoad, Site};
 use flexdem_elements::{Model, Particles};
@@ -575,17 +574,7 @@ fn step_pair(
                 (g, vs1.center, vs2.center)
             }
         };
-        let f = update_frictional_contact(
-            &c.params,
-            &mut c.state,
-            &ContactKinematics {
-                normal: g.normal,
-                overlap: g.overlap,
-                relative_velocity: g.relative_velocity,
-                spin_about_normal: g.spin_about_normal,
-            },
-            dt,
-        );
+        let f = update_frictional_contact(&c.params, &mut c.state, &law_kinematics(&g), dt);
         // a particle's site takes the whole force, and its moment about the centre
         // (`distribute_force` with the weight 1)
         let on_1 = -f.force_on_2;
