@@ -291,3 +291,40 @@ pub(crate) fn geometry_of(
         }
     }
 }
+
+/// The largest distance from a site's centre to its nodes: 0 on a particle, up to the length
+/// of an edge or the size of a face.
+pub(crate) fn extent(site: &Site, pos: &[Vec3]) -> Real {
+    let n = site.node_count();
+    if n < 2 {
+        return 0.0;
+    }
+    let nodes = &site.nodes[..n];
+    let centre: Vec3 = nodes.iter().zip(&site.weights).map(|(&i, &w)| pos[i as usize] * w).sum();
+    nodes.iter().map(|&i| (pos[i as usize] - centre).norm()).fold(0.0, Real::max)
+}
+
+/// Whether contact `new` sees the touching of `old` (same owners) from the other side: its
+/// body 1 on the other's body 2. Only a structure touching itself can be seen so (bodies are
+/// ordered by owner, see `contacts::oriented`); the sides are matched by the nodes the sites
+/// share, then by the nearer site centres.
+pub(crate) fn mirrored(new: &Contact, old: &Contact, pos: &[Vec3]) -> bool {
+    if new.owners.0 != new.owners.1 {
+        return false;
+    }
+    fn nodes(s: &Site) -> &[u32] {
+        &s.nodes[..s.node_count()]
+    }
+    let shared = |a: &Site, b: &Site| nodes(a).iter().filter(|n| nodes(b).contains(n)).count();
+    let same = shared(&new.site1, &old.site1) + shared(&new.site2, &old.site2);
+    let cross = shared(&new.site1, &old.site2) + shared(&new.site2, &old.site1);
+    if same != cross {
+        return cross > same;
+    }
+    let centre = |s: &Site| -> Vec3 {
+        nodes(s).iter().zip(&s.weights).map(|(&i, &w)| pos[i as usize] * w).sum()
+    };
+    let (n1, n2, o1, o2) =
+        (centre(&new.site1), centre(&new.site2), centre(&old.site1), centre(&old.site2));
+    (n1 - o2).norm() + (n2 - o1).norm() < (n1 - o1).norm() + (n2 - o2).norm()
+}

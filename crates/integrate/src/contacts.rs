@@ -6,38 +6,21 @@
 
 use crate::collider::{Collider, NONE};
 pub(crate) use crate::contact::BirthReport;
-pub use crate::contact::Contact;
 use crate::contact::{
-    birth_jump, geometry, law_kinematics, material, new_contact, owner, wall_touching, Touching,
+    birth_jump, extent, geometry, law_kinematics, material, mirrored, new_contact, owner,
+    wall_touching, Contact, Touching,
 };
+use crate::contact_list::Contacts;
 use crate::dashpots::{dashpot_power, shear_exit};
-use crate::neighbours::{merged, merged_from, NeighbourList, PairScratch, Pick, Sink};
+use crate::neighbours::{merged, PairScratch, Pick, Sink};
 use crate::prefilter::{hull, proven_apart, Hull};
 use flexdem_contact::{update_frictional_contact, ContactDamping};
 use flexdem_elements::pairs::{self, Candidate, ConnectionRef, PFacetRef, SphereRef};
 use flexdem_elements::touching::{dominates, Element, ElementCandidate, Topology};
-use flexdem_elements::virtual_sphere::{distribute_force, Feature, Kinematics, NodeLoad, Site};
+use flexdem_elements::virtual_sphere::{distribute_force, Feature, Kinematics, NodeLoad};
 use flexdem_elements::{Adjacency, Model};
 use flexdem_geom::{Real, Vec3};
 use rayon::prelude::*;
-use serde::{Deserialize, Serialize};
-
-/// The contacts with their history: the part of the simulation state a checkpoint keeps
-/// (the buffers that find and update them are `ContactPipeline`'s).
-#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
-pub struct Contacts {
-    /// Current contacts that involve a structure (sorted by key); those of free spheres with
-    /// free spheres and walls are in `pairs`.
-    pub list: Vec<Contact>,
-    /// The candidate pairs of free spheres with free spheres and walls, with their contacts
-    /// (a neighbour list with history, `neighbours.rs`).
-    pub pairs: NeighbourList,
-    /// Friction dissipated by contacts that have ended (J).
-    pub ended_dissipation: Real,
-    /// Contacts found late (first touches with an overlap one step of approach does not
-    /// explain) so far.
-    pub born_deep: u64,
-}
 
 /// The buffers and caches that find and update the contacts, rebuilt from the model: nothing
 /// here is saved.
@@ -77,43 +60,6 @@ struct Scratch {
     taken: Vec<bool>,
     ended: Vec<usize>,
     by_owners: Vec<usize>,
-}
-
-/// The largest distance from a site's centre to its nodes: 0 on a particle, up to the length
-/// of an edge or the size of a face.
-fn extent(site: &Site, pos: &[Vec3]) -> Real {
-    let n = site.node_count();
-    if n < 2 {
-        return 0.0;
-    }
-    let nodes = &site.nodes[..n];
-    let centre: Vec3 = nodes.iter().zip(&site.weights).map(|(&i, &w)| pos[i as usize] * w).sum();
-    nodes.iter().map(|&i| (pos[i as usize] - centre).norm()).fold(0.0, Real::max)
-}
-
-/// Whether contact `new` sees the touching of `old` (same owners) from the other side: its
-/// body 1 on the other's body 2. Only a structure touching itself can be seen so (bodies are
-/// ordered by owner, see [`oriented`]); the sides are matched by the nodes the sites share,
-/// then by the nearer site centres.
-fn mirrored(new: &Contact, old: &Contact, pos: &[Vec3]) -> bool {
-    if new.owners.0 != new.owners.1 {
-        return false;
-    }
-    fn nodes(s: &Site) -> &[u32] {
-        &s.nodes[..s.node_count()]
-    }
-    let shared = |a: &Site, b: &Site| nodes(a).iter().filter(|n| nodes(b).contains(n)).count();
-    let same = shared(&new.site1, &old.site1) + shared(&new.site2, &old.site2);
-    let cross = shared(&new.site1, &old.site2) + shared(&new.site2, &old.site1);
-    if same != cross {
-        return cross > same;
-    }
-    let centre = |s: &Site| -> Vec3 {
-        nodes(s).iter().zip(&s.weights).map(|(&i, &w)| pos[i as usize] * w).sum()
-    };
-    let (n1, n2, o1, o2) =
-        (centre(&new.site1), centre(&new.site2), centre(&old.site1), centre(&old.site2));
-    (n1 - o2).norm() + (n2 - o1).norm() < (n1 - o1).norm() + (n2 - o2).norm()
 }
 
 /// A touching turned so that body 1 is the one with the smaller (owner, feature): the
@@ -674,92 +620,5 @@ impl ContactPipeline {
         // with a constant step, h/(2·dt₀) is 0.5 exactly
         let kick = 0.5 * (previous + dt);
         (law * (kick / (2.0 * previous)), -0.5 * kick * power)
-    }
-}
-
-impl Contacts {
-    /// Elastic energy stored in the contacts at the last update.
-    pub fn elastic_energy(&self) -> Real {
-        self.list.iter().map(|c| c.forces.elastic_energy).sum::<Real>()
-            + self.pairs.elastic_energy()
-    }
-
-    /// Energy dissipated by contact friction since the start (the dashpots' is counted by
-    /// the engine's energy account, `Energy::contact_damping`).
-    pub fn dissipated(&self) -> Real {
-        self.ended_dissipation
-            + self.list.iter().map(|c| c.state.dissipated.friction).sum::<Real>()
-            + self.pairs.dissipated()
-    }
-
-    /// `(elastic_energy(), dissipated())`, the same sums in one pass over the free spheres'
-    /// pairs (which live apart in memory: one visit each instead of two).
-    pub(crate) fn energy_sums(&self) -> (Real, Real) {
-        let (elastic, friction) = self.pairs.energy_sums();
-        (
-            self.list.iter().map(|c| c.forces.elastic_energy).sum::<Real>() + elastic,
-            self.ended_dissipation
-                + self.list.iter().map(|c| c.state.dissipated.friction).sum::<Real>()
-                + friction,
-        )
-    }
-
-    /// Number of contacts (both lists).
-    pub fn len(&self) -> usize {
-        self.list.len() + self.pairs.len()
-    }
-
-    /// Whether there is no contact.
-    pub fn is_empty(&self) -> bool {
-        self.list.is_empty() && self.pairs.is_empty()
-    }
-
-    /// Every contact, in key order, as a [`Contact`] (the free spheres' made from their
-    /// neighbour list): for output and inspection, not for the step.
-    pub fn all(&self, model: &Model) -> Vec<Contact> {
-        merged(&self.list, &self.pairs)
-            .map(|pick| match pick {
-                Pick::General(n) => self.list[n].clone(),
-                Pick::Pair(n) => {
-                    self.pairs.contact(model, n).expect("merged yields touching pairs")
-                }
-            })
-            .collect()
-    }
-
-    /// Calls `f(wall, force on the body, normal force, kn)` on every wall contact, in key
-    /// order (nothing made: the walls' loads are summed every step). The keys sort walls
-    /// last: only the two lists' tails are looked at.
-    pub(crate) fn for_each_on_wall(&self, mut f: impl FnMut(u32, &Vec3, Real, Real)) {
-        let g = self.list.partition_point(|c| !matches!(c.key().0, Feature::Wall(_)));
-        for pick in merged_from(&self.list, &self.pairs, g, self.pairs.first_wall()) {
-            let (key, forces, params) = match pick {
-                Pick::General(n) => {
-                    let c = &self.list[n];
-                    (c.key(), &c.forces, &c.params)
-                }
-                Pick::Pair(n) => {
-                    let (key, c) = self.pairs.get(n);
-                    (*key, &c.forces, &c.params)
-                }
-            };
-            if let Feature::Wall(w) = key.0 {
-                f(w, &forces.force_on_2, forces.normal_force, params.kn);
-            }
-        }
-    }
-
-    /// Calls `f` on every contact in key order (the free spheres' made on the fly).
-    pub(crate) fn for_each(&self, model: &Model, mut f: impl FnMut(&Contact)) {
-        for pick in merged(&self.list, &self.pairs) {
-            match pick {
-                Pick::General(n) => f(&self.list[n]),
-                Pick::Pair(n) => {
-                    if let Some(c) = self.pairs.contact(model, n) {
-                        f(&c);
-                    }
-                }
-            }
-        }
     }
 }

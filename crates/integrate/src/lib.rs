@@ -6,6 +6,7 @@
 mod broad_phase;
 mod collider;
 mod contact;
+mod contact_list;
 mod contacts;
 mod culprit;
 mod dashpots;
@@ -29,7 +30,8 @@ mod timers;
 
 pub use broad_phase::BroadPhase;
 pub use collider::Collider;
-pub use contacts::{Contact, Contacts};
+pub use contact::Contact;
+pub use contact_list::Contacts;
 pub use energy::{Energy, EnergyAccount, EnergyWatch, PendingWork};
 pub use error::SimulationError;
 pub use integrator::{kinetic_energy, leapfrog_step, Leapfrog, StepWork};

@@ -3,7 +3,7 @@
 //! deviator, and the solid fraction of a region. Pure functions of the model and the
 //! contacts of the last step; stresses are compression positive.
 
-use crate::contacts::Contact;
+use crate::contact::Contact;
 use crate::region::Region;
 use flexdem_elements::virtual_sphere::{Feature, Site};
 use flexdem_elements::{Model, ParticleKind, Particles, Wall};

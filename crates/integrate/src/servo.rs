@@ -23,7 +23,7 @@
 //! of approach, choose it so that the wall moves by a small fraction of the particles' radius
 //! per step.
 
-use crate::contacts::Contacts;
+use crate::contact_list::Contacts;
 use crate::measures::{membrane_sample_volume, normal_force, wall_gap};
 use crate::SimulationError;
 use flexdem_geom::{Real, Vec3};

@@ -3,7 +3,7 @@
 //! the stages of a step are in `stages.rs`).
 
 use crate::collider::Collider;
-use crate::contacts::Contact;
+use crate::contact::Contact;
 use crate::energy::{Energy, EnergyWatch};
 use crate::integrator::kinetic_energy;
 use crate::links::Links;

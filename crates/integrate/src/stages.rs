@@ -2,7 +2,7 @@
 //! bookkeeping around them: energy terms, the energy watch, the checks of a run going
 //! unstable and the time step.
 
-use crate::contacts::Contact;
+use crate::contact::Contact;
 use crate::culprit::describe;
 use crate::dashpots::damped_stiffness_factor;
 use crate::energy::PendingWork;

@@ -3,7 +3,8 @@
 //! adjacency, contact buffers, force sums, timers, the user's force hook) is rebuilt from it
 //! by [`crate::Simulation::from_state`].
 
-use crate::contacts::{Contact, Contacts};
+use crate::contact::Contact;
+use crate::contact_list::Contacts;
 use crate::energy::EnergyAccount;
 use crate::links::Links;
 use crate::pressure::{check_pressure, Pressure};

@@ -1,0 +1,115 @@
+//! The contacts of a simulation, the part of its state a checkpoint keeps: the general ones
+//! (those of structures, sorted by key) and the free spheres' neighbour list, with what reads
+//! them all (energy sums, counts, the list made for output, the walks over the wall contacts
+//! and over every contact in key order).
+
+use crate::contact::Contact;
+use crate::neighbours::{merged, merged_from, NeighbourList, Pick};
+use flexdem_elements::virtual_sphere::Feature;
+use flexdem_elements::Model;
+use flexdem_geom::{Real, Vec3};
+use serde::{Deserialize, Serialize};
+
+/// The contacts with their history: the part of the simulation state a checkpoint keeps
+/// (the buffers that find and update them are `ContactPipeline`'s).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Contacts {
+    /// Current contacts that involve a structure (sorted by key); those of free spheres with
+    /// free spheres and walls are in `pairs`.
+    pub list: Vec<Contact>,
+    /// The candidate pairs of free spheres with free spheres and walls, with their contacts
+    /// (a neighbour list with history, `neighbours.rs`).
+    pub pairs: NeighbourList,
+    /// Friction dissipated by contacts that have ended (J).
+    pub ended_dissipation: Real,
+    /// Contacts found late (first touches with an overlap one step of approach does not
+    /// explain) so far.
+    pub born_deep: u64,
+}
+
+impl Contacts {
+    /// Elastic energy stored in the contacts at the last update.
+    pub fn elastic_energy(&self) -> Real {
+        self.list.iter().map(|c| c.forces.elastic_energy).sum::<Real>()
+            + self.pairs.elastic_energy()
+    }
+
+    /// Energy dissipated by contact friction since the start (the dashpots' is counted by
+    /// the engine's energy account, `Energy::contact_damping`).
+    pub fn dissipated(&self) -> Real {
+        self.ended_dissipation
+            + self.list.iter().map(|c| c.state.dissipated.friction).sum::<Real>()
+            + self.pairs.dissipated()
+    }
+
+    /// `(elastic_energy(), dissipated())`, the same sums in one pass over the free spheres'
+    /// pairs (which live apart in memory: one visit each instead of two).
+    pub(crate) fn energy_sums(&self) -> (Real, Real) {
+        let (elastic, friction) = self.pairs.energy_sums();
+        (
+            self.list.iter().map(|c| c.forces.elastic_energy).sum::<Real>() + elastic,
+            self.ended_dissipation
+                + self.list.iter().map(|c| c.state.dissipated.friction).sum::<Real>()
+                + friction,
+        )
+    }
+
+    /// Number of contacts (both lists).
+    pub fn len(&self) -> usize {
+        self.list.len() + self.pairs.len()
+    }
+
+    /// Whether there is no contact.
+    pub fn is_empty(&self) -> bool {
+        self.list.is_empty() && self.pairs.is_empty()
+    }
+
+    /// Every contact, in key order, as a [`Contact`] (the free spheres' made from their
+    /// neighbour list): for output and inspection, not for the step.
+    pub fn all(&self, model: &Model) -> Vec<Contact> {
+        merged(&self.list, &self.pairs)
+            .map(|pick| match pick {
+                Pick::General(n) => self.list[n].clone(),
+                Pick::Pair(n) => {
+                    self.pairs.contact(model, n).expect("merged yields touching pairs")
+                }
+            })
+            .collect()
+    }
+
+    /// Calls `f(wall, force on the body, normal force, kn)` on every wall contact, in key
+    /// order (nothing made: the walls' loads are summed every step). The keys sort walls
+    /// last: only the two lists' tails are looked at.
+    pub(crate) fn for_each_on_wall(&self, mut f: impl FnMut(u32, &Vec3, Real, Real)) {
+        let g = self.list.partition_point(|c| !matches!(c.key().0, Feature::Wall(_)));
+        for pick in merged_from(&self.list, &self.pairs, g, self.pairs.first_wall()) {
+            let (key, forces, params) = match pick {
+                Pick::General(n) => {
+                    let c = &self.list[n];
+                    (c.key(), &c.forces, &c.params)
+                }
+                Pick::Pair(n) => {
+                    let (key, c) = self.pairs.get(n);
+                    (*key, &c.forces, &c.params)
+                }
+            };
+            if let Feature::Wall(w) = key.0 {
+                f(w, &forces.force_on_2, forces.normal_force, params.kn);
+            }
+        }
+    }
+
+    /// Calls `f` on every contact in key order (the free spheres' made on the fly).
+    pub(crate) fn for_each(&self, model: &Model, mut f: impl FnMut(&Contact)) {
+        for pick in merged(&self.list, &self.pairs) {
+            match pick {
+                Pick::General(n) => f(&self.list[n]),
+                Pick::Pair(n) => {
+                    if let Some(c) = self.pairs.contact(model, n) {
+                        f(&c);
+                    }
+                }
+            }
+        }
+    }
+}
