@@ -171,6 +171,22 @@ fn closed_elastic_path_returns_zero_work() {
     assert!(de.abs() < 1e-6 * e_scale, "energy change {de}");
 }
 
+/// A run of 1 to 19 updates of a contact: the direction the normal tilts towards, the tilt,
+/// the overlap, the relative velocity, the spin about the normal and the step.
+fn law_steps() -> impl Strategy<Value = Vec<(Vec3, Real, Real, Vec3, Real, Real)>> {
+    prop::collection::vec(
+        (
+            unit_vec3(),
+            0.0..0.3_f64,
+            -1e-3..1e-2_f64,
+            vec3(10.0),
+            -50.0..50.0_f64,
+            log_uniform(1e-7, 1e-2),
+        ),
+        1..20,
+    )
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(256))]
 
@@ -180,10 +196,7 @@ proptest! {
         ratio in 0.0..1.0_f64,
         tan_phi in 0.0..2.0_f64,
         n0 in unit_vec3(),
-        steps in prop::collection::vec(
-            (unit_vec3(), 0.0..0.3_f64, -1e-3..1e-2_f64, vec3(10.0), -50.0..50.0_f64,
-             log_uniform(1e-7, 1e-2)),
-            1..20),
+        steps in law_steps(),
     ) {
         let p = params(kn, ratio, tan_phi);
         let mut st = FrictionalContact::new(n0);
@@ -409,10 +422,7 @@ proptest! {
         ratio in 0.0..1.0_f64,
         tan_phi in 0.0..2.0_f64,
         n0 in unit_vec3(),
-        steps in prop::collection::vec(
-            (unit_vec3(), 0.0..0.3_f64, -1e-3..1e-2_f64, vec3(10.0), -50.0..50.0_f64,
-             log_uniform(1e-7, 1e-2)),
-            1..20),
+        steps in law_steps(),
     ) {
         let p = params(kn, ratio, tan_phi);
         prop_assert!(!p.is_damped());
@@ -438,10 +448,7 @@ proptest! {
         tan_phi in 0.0..2.0_f64,
         zeta in (0.0..1.5_f64, 0.0..1.5_f64),
         n0 in unit_vec3(),
-        steps in prop::collection::vec(
-            (unit_vec3(), 0.0..0.3_f64, -1e-3..1e-2_f64, vec3(10.0), -50.0..50.0_f64,
-             log_uniform(1e-7, 1e-2)),
-            1..20),
+        steps in law_steps(),
     ) {
         // dashpots of damping ratio up to 1.5 on a 1 kg pair
         let p = damped(kn, ratio, tan_phi, 2.0 * zeta.0 * kn.sqrt(), 2.0 * zeta.1 * (kn * ratio).sqrt());
