@@ -256,3 +256,48 @@ fn a_contact_found_late_is_counted_and_its_energy_booked() {
     assert!((kinetic / e.contact_births - 1.0).abs() < 1e-9, "kinetic {kinetic}: {e:?}");
     assert!(sim.relative_balance_error().abs() < 1e-9, "{e:?}");
 }
+
+/// A fold resting on another at two places (what the Brazier winding does over and over): node
+/// `x` of the upper fold lies on the lower fold's face, 0.2 r deep, and the other PFacet that
+/// holds `x` reaches 0.5 r deep into the same face a whole element away. Each place is a
+/// contact: `x` is held up by its own contact, with the force of its own overlap (eq 1), instead
+/// of sinking through the face while the deeper touching stands for it.
+#[test]
+fn a_fold_resting_on_another_at_two_places_has_a_contact_at_each() {
+    let mut model = Model::new();
+    let m = model.add_material(Material::new(1e7, 0.3, 1000.0, 0.5).unwrap()).unwrap();
+    let r = 0.01;
+    let s = model.add_structure("folds").unwrap();
+    let mut node = |p: [Real; 3]| model.add_node(s, Vec3::from(p), r, m, 1).unwrap();
+    let floor = [node([-1.0, -1.0, 0.0]), node([3.0, -1.0, 0.0]), node([-1.0, 3.0, 0.0])];
+    let x = node([0.0, 0.0, 1.8 * r]);
+    let rising = [node([-0.5, 0.0, 0.5]), node([-0.5, 0.5, 0.5])];
+    let reaching = [node([1.0, -0.1, 1.6 * r]), node([1.0, 0.1, 1.5 * r])];
+    let mut pfacet = |[a, b, c]: [u32; 3]| {
+        let ab = model.add_connection(s, [a, b], r, m, 1).unwrap();
+        let bc = model.add_connection(s, [b, c], r, m, 1).unwrap();
+        let ca = model.add_connection(s, [c, a], r, m, 1).unwrap();
+        model.add_pfacet(s, [a, b, c], [ab, bc, ca], r, m, 1).unwrap();
+    };
+    pfacet(floor);
+    pfacet([x, rising[0], rising[1]]);
+    pfacet([x, reaching[0], reaching[1]]);
+    model.lump_structure_mass(s, MassLumping::Connections).unwrap();
+    let all = model.structures[s as usize].nodes.clone();
+    model.block(all, Dofs::ALL).unwrap();
+    let settings = Settings { time_step: TimeStep::Fixed(1e-6), ..Settings::default() };
+    let mut sim = Simulation::new(model, settings).unwrap();
+    sim.step().unwrap();
+    let contacts = sim.contacts();
+    assert_eq!(contacts.len(), 2, "{contacts:#?}");
+    let on_x = contacts
+        .iter()
+        .find(|c| {
+            [c.site1.feature, c.site2.feature]
+                .contains(&flexdem::elements::virtual_sphere::Feature::Particle(x))
+        })
+        .expect("node x has no contact of its own");
+    let expected = on_x.params.kn * 0.2 * r;
+    let force = on_x.forces.normal_force;
+    assert!((force / expected - 1.0).abs() < 1e-9, "force on x {force} N, eq 1: {expected} N");
+}

@@ -11,7 +11,8 @@
 //! Candidate `j` **dominates** candidate `i` when `j`'s two elements contain both of `i`'s
 //! features (so `j` saw every point `i` stands for; for a structure touching itself, in
 //! either order, since the same touching is found by the pair of elements on each side and
-//! by the mirror pair) and either
+//! by the mirror pair), `j` is at the same place (its contact point within `i`'s contact size
+//! `r₁ + r₂` of `i`'s, see [`same_place`]) and either
 //! - `j` is closer by more than a tolerance: `i`'s point is not where the distance to the
 //!   structure is locally smallest (a sphere over a face also "touches" the neighbouring
 //!   edges and nodes: those candidates are dominated by the face's), or
@@ -23,7 +24,8 @@
 //!
 //! The contacts are the candidates no other candidate dominates. On a flat mesh a sphere has
 //! one contact whatever it is over; in a concave valley it has one per face it touches (the
-//! faces do not contain each other's features).
+//! faces do not contain each other's features); two folds of a structure pressed together
+//! have one contact per place they touch at, even where one element reaches two of them.
 //!
 //! Neighbouring elements compute the same closest point with different round-off; the sites
 //! snap a point within a relative 1e-9 of a node or an edge onto it (`pairs::SNAP`), so a body
@@ -117,6 +119,20 @@ fn tie_tolerance(a: &Candidate, b: &Candidate) -> Real {
     1e-9 * scale
 }
 
+/// Whether candidate `j` touches where `i` does: their contact points (the midpoints of the
+/// virtual-sphere centres) are within `i`'s contact size `r₁ + r₂`.
+///
+/// A rigid body's candidates against one structure always pass (a sphere of radius `R`
+/// overlapping an edge at `h` from the face point below it has `h < √(2(R + r)δ)`, and the
+/// midpoints are `h/2` apart). Two deformable folds do not: an element containing the node of
+/// a touching may reach deeper into the other fold a whole element away, and without this
+/// test that touching would be dropped, its node sinking through the fold unresisted (the
+/// Brazier winding of the validation report did so until 2026-12).
+pub fn same_place(j: &Candidate, i: &Candidate) -> bool {
+    let middle = |c: &Candidate| 0.5 * (c.center1 + c.center2);
+    (middle(j) - middle(i)).norm() <= i.site1.radius + i.site2.radius
+}
+
 /// Rank of a candidate among ties: total feature dimension first, then the smaller feature
 /// pair (in either order: a touching of a structure with itself is found from both sides).
 /// Higher is preferred.
@@ -156,6 +172,9 @@ pub fn dominates(
         return false;
     }
     let (cj, ci) = (&j.candidate, &i.candidate);
+    if !same_place(cj, ci) {
+        return false;
+    }
     let tol = tie_tolerance(ci, cj);
     if cj.distance < ci.distance - tol {
         return true;

@@ -210,6 +210,60 @@ fn concave_valley_gives_one_contact_per_face() {
     }
 }
 
+/// Two folds of one structure pressed together at two places (the Brazier winding): the upper
+/// fold's node 3 sits on face 0 (PFacet 1's closest feature), and PFacet 2, which contains
+/// node 3, reaches deeper into face 0 along its far edge, a whole element away. PFacet 2's
+/// elements contain both features of node 3's touching, and it is closer, but it is not at
+/// the same place: both touchings are contacts, else node 3 would sink through face 0.
+#[test]
+fn folds_pressed_together_at_two_places_get_a_contact_at_each() {
+    let r = 0.01;
+    let pos = [
+        // the lower fold: face 0
+        Vec3::new(-1.0, -1.0, 0.0),
+        Vec3::new(3.0, -1.0, 0.0),
+        Vec3::new(-1.0, 3.0, 0.0),
+        // node 3, overlapping face 0 by 0.2 r
+        Vec3::new(0.0, 0.0, 1.8 * r),
+        // PFacet 1 rises from node 3
+        Vec3::new(-0.5, 0.0, 0.5),
+        Vec3::new(-0.5, 0.5, 0.5),
+        // PFacet 2 goes down to node 7, overlapping face 0 by 0.5 r, 1 m away
+        Vec3::new(1.0, -0.1, 1.6 * r),
+        Vec3::new(1.0, 0.1, 1.5 * r),
+    ];
+    let conn_nodes = vec![[0, 1], [1, 2], [2, 0], [3, 4], [4, 5], [5, 3], [3, 6], [6, 7], [7, 3]];
+    let pf_nodes = vec![[0, 1, 2], [3, 4, 5], [3, 6, 7]];
+    let pf_conns = vec![[0, 1, 2], [3, 4, 5], [6, 7, 8]];
+    let topo = Topology {
+        connection_nodes: &conn_nodes,
+        pfacet_nodes: &pf_nodes,
+        pfacet_connections: &pf_conns,
+    };
+    let pf = |f: usize| PFacetRef {
+        id: f as u32,
+        nodes: pf_nodes[f],
+        connections: pf_conns[f],
+        corners: pf_nodes[f].map(|i| pos[i as usize]),
+        radius: r,
+    };
+    let c: Vec<_> = [1, 2]
+        .map(|f| ElementCandidate {
+            element1: Element::PFacet(f as u32),
+            element2: Element::PFacet(0),
+            candidate: pfacet_pfacet(&pf(f), &pf(0)),
+        })
+        .into();
+    assert_eq!(c[0].candidate.site1.feature, Feature::Particle(3));
+    assert_eq!(c[1].candidate.site1.feature, Feature::Particle(7));
+    assert!((c[0].candidate.overlap() - 0.2 * r).abs() < 1e-12);
+    assert!((c[1].candidate.overlap() - 0.5 * r).abs() < 1e-12);
+    // PFacet 2 saw node 3 and is closer: without the place test it would dominate
+    assert!(topo.element_contains(c[1].element1, Feature::Particle(3)));
+    assert!(!same_place(&c[1].candidate, &c[0].candidate));
+    assert_eq!(touchings(&c, &topo), vec![0, 1]);
+}
+
 /// validation.md case 7: a sphere on a horizontal connection at parameter t: the nodes carry
 /// (1 − t, t) of the contact force, exactly.
 #[test]

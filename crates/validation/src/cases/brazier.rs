@@ -411,14 +411,20 @@ fn notes_text(m18: Real, m_lattice: Real, bending: &BendingResult) -> String {
          two PFacets), so a fold carrying a large force overlaps by F_n/k_n, here a sizeable \
          fraction of the wall thickness 2r. The check therefore compares the deepest \
          node–PFacet penetration with the largest overlap the contact law needs for its force: \
-         a penetration beyond it would be a self-contact the detection missed. Since the \
-         large-deformation work of 2026-12 the winding goes much further (84.7 rad at the end \
-         instead of 9.6) and the smallest distance seen during it reaches zero: walls pass \
-         through each other (two intersecting triangles are at distance 0 however deep, \
-         docs/model.md §1), and the winding's energy balance, now counting the end moment's \
-         work, is off by 6e-2. Both are open.",
+         a penetration beyond it would be a self-contact the detection missed. Until 2026-12 \
+         one was: a node resting on a fold lost its contact whenever an element holding it \
+         reached deeper into the other fold an element's length away, and nodes sank through \
+         the walls (the end turned 84.7 rad through the tube's own walls, with the winding's \
+         balance off by 6.1e-2). A touching is now one place (docs/model.md §2).",
         (m_lattice / m18 - 1.0) * 100.0
     );
+    if let Some(end) = &bending.final_state {
+        notes.push_str(&format!(
+            " Here the folds press together and hold: the end rotation is {:.1} rad after \
+             the winding, with {} self-contacts.",
+            end.rotation, end.contacts
+        ));
+    }
     match (bending.buckling_moment, bending.collapse_position) {
         (Some(m), Some(x)) if (m / m18 - 1.0).abs() > BUCKLING_TOL => notes.push_str(&format!(
             "\n\n**Why the buckling check fails.** Up to the collapse the tube follows \
