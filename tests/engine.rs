@@ -240,3 +240,36 @@ fn a_saved_state_continues_bit_identically() {
 fn root_path(relative: &str) -> std::path::PathBuf {
     std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(relative)
 }
+
+/// An automatic step falls at once when a contact stiffens a body, and grows back by at most
+/// 10 % per estimate of the critical step once the contact has ended (model.md §3: a step
+/// raised much at once puts a spike into the energy balance).
+#[test]
+fn an_automatic_step_falls_at_once_and_grows_back_gradually() {
+    use flexdem::elements::builders::{chain, straight_line, StructureOptions};
+    // a soft chain (its links set dt) hit end-on by a stiff sphere: the contact, far stiffer
+    // than the links, lowers dt while it lasts
+    let mut model = Model::new();
+    let soft = model.add_material(Material::new(1e6, 0.3, 1000.0, 0.5).unwrap()).unwrap();
+    let stiff = model.add_material(Material::new(1e9, 0.3, 1000.0, 0.5).unwrap()).unwrap();
+    let points = straight_line(Vec3::zeros(), Vec3::new(1.0, 0.0, 0.0), 4).unwrap();
+    chain(&mut model, &points, &StructureOptions::new("chain", 0.01, soft)).unwrap();
+    let sphere = model.add_sphere(Vec3::new(-0.0605, 0.0, 0.0), 0.05, stiff).unwrap();
+    model.particles.vel[sphere as usize] = Vec3::new(0.1, 0.0, 0.0);
+    let settings = Settings { time_step: TimeStep::Auto { safety: 0.3 }, ..Settings::default() };
+    let mut sim = Simulation::new(model, settings).unwrap();
+    let free = sim.dt();
+    let mut dts = vec![free];
+    while sim.steps() < 5000 {
+        sim.step().unwrap();
+        dts.push(sim.dt());
+    }
+    let lowest = dts.iter().copied().fold(Real::INFINITY, Real::min);
+    assert!(lowest < 0.5 * free, "the contact did not lower dt: {lowest} vs {free}");
+    assert!(sim.contacts().is_empty(), "the spheres did not separate");
+    for (k, w) in dts.windows(2).enumerate() {
+        assert!(w[1] <= 1.1 * w[0] * (1.0 + 1e-12), "step {k}: dt {} -> {}", w[0], w[1]);
+    }
+    // back to the chain's own step (within its links' stretch)
+    assert!((sim.dt() / free - 1.0).abs() < 0.01, "dt {} did not grow back to {free}", sim.dt());
+}
