@@ -1,55 +1,38 @@
 #!/usr/bin/env bash
-# The tube impact (examples/tube_impact_heavy.toml, fixed dt = 2e-4 s) in flexdem and in YADE
-# 2023.02a, one thread each, the same 25 untimed + 725 timed steps; prints both speeds in steps
-# per second, their ratio, and the impactor's final vertical velocity in both codes.
+# flexdem against YADE 2023.02a on twins of YADE's reference runs (shared/reference/yade): the
+# same scene in both codes (mesh, masses, materials, boundary conditions, initial velocities,
+# the same FIXED time step: YADE's own, 0.5 * PWaveTimeStep() as the reference scripts set it),
+# the same untimed warm-up and timed steps, 1 thread, output off. The runs are interleaved
+# (flexdem, YADE, flexdem, YADE, ...; one process at a time) and the medians compared. Per
+# scene it prints both codes' time per step (ms, wall and process CPU), steps per CPU-second,
+# the ratio YADE time / flexdem time, and a physical check value from both codes.
 #
-#   bench/run_vs_yade.sh                 (from anywhere; needs cargo and /usr/bin/yade)
-#   REPEATS=5 STEPS=725 WARMUP=25 bench/run_vs_yade.sh
-#   FLEXDEM=path/to/flexdem bench/run_vs_yade.sh    (use this binary, do not build)
+#   bench/run_vs_yade.sh [SCENE ...]      SCENE: tube, membrane20, membrane40, membrane80,
+#                                         membrane (the three), net, all (default)
+#   REPEATS=3 FLEXDEM=path/to/flexdem YADE=yade bench/run_vs_yade.sh tube
+#   (without FLEXDEM it builds target/release/flexdem with cargo)
+#   steps: TUBE_WARMUP/TUBE_STEPS (25/5800), MEMBRANE_WARMUP/MEMBRANE_STEPS (50/200),
+#          NET_WARMUP/NET_STEPS (6000/20000)
 #
-# flexdem runs REPEATS times (its 725 steps last a fraction of a second); the median speed is
-# used. Outputs: bench/results/tube_impact_flexdem.csv, bench/results/tube_impact_yade.log.
+# Scenes (flexdem side written by bench/yade/twin.py; YADE side bench/yade/*.py, the reference
+# scripts' scene-building code unchanged):
+#   tube        tube_impact.py scenario 2 "solid": 640-PFacet tube with the half-step node
+#               offset and the mirrored split, the light rigid sphere (0.1121 kg) at 2 m/s,
+#               dt 2.587e-5 s; flexdem: bench/scenes/tube_impact_solid_yade.toml (+ .obj).
+#               25 + 5800 steps (to t = 0.15 s). Check: the sphere's vz at the end.
+#   membraneN   membrane_scaling.py N (20, 40, 80): flat PFacet membrane, N x N nodes, under
+#               (N/2)^2 spheres; YADE variants 'noself' (masks: no PFacet-PFacet pairs) and
+#               'self'; flexdem always pairs them (it is the twin of 'self'). 50 + 200 steps.
+#               Check: vz of the sphere nearest the centre, z of the centre node, kinetic energy.
+#   net         net_drop.py: 10 x 10 net of connections, a 4.19 kg sphere dropped on it,
+#               damping 0.3; flexdem: bench/scenes/net_drop_yade.toml. 6000 (the fall) + 20000
+#               (impact and rebound) steps. Check: the sphere's z and vz at the end.
+# What differs between the twins: bench/README.md, "YADE twins".
+# Raw results: bench/results/vs_yade_<scene>.csv.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-STEPS=${STEPS:-725}
-WARMUP=${WARMUP:-25}
-REPEATS=${REPEATS:-5}
-YADE=${YADE:-yade}
-mkdir -p bench/results
-
 if [ -z "${FLEXDEM:-}" ]; then
     cargo build --release -p flexdem-cli >&2
     FLEXDEM=./target/release/flexdem
 fi
-threads=$(printf '1,%.0s' $(seq "$REPEATS")); threads=${threads%,}
-csv=bench/results/tube_impact_flexdem.csv
-"$FLEXDEM" bench --scene tube_impact --threads "$threads" \
-    --warmup "$WARMUP" --steps "$STEPS" --csv "$csv" >&2
-
-# A CSV column of the data rows, by its header name.
-column() {
-    awk -F, -v name="$1" 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == name) c = i; next }
-                          { print $c }' "$csv"
-}
-median() { sort -g | awk '{ v[NR] = $1 } END { print v[int((NR + 1) / 2)] }'; }
-ours=$(column steps_per_s | median)
-ours_cpu=$(column steps_per_cpu_s | median)
-ours_vz=$(column probe_value | head -n 1)
-
-log=bench/results/tube_impact_yade.log
-TUBE_WARMUP=$WARMUP TUBE_STEPS=$STEPS "$YADE" -j 1 -n -x bench/yade/tube_impact.py > "$log" 2>&1 || {
-    echo "YADE failed, see $log" >&2
-    exit 1
-}
-theirs=$(awk '$1 == "YADE_STEPS_PER_S" { print $2 }' "$log")
-theirs_cpu=$(awk '$1 == "YADE_STEPS_PER_CPU_S" { print $2 }' "$log")
-theirs_vz=$(awk '$1 == "YADE_IMPACTOR_VZ" { print $2 }' "$log")
-
-echo "tube impact: 640 PFacets, dt 2e-4 s, $WARMUP + $STEPS steps, 1 thread (machine: $(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg))"
-printf '%-8s %12s %16s %14s\n' "" "steps/s" "steps/CPU-s" "impactor vz"
-printf '%-8s %12.1f %16.1f %+14.4f m/s\n' flexdem "$ours" "$ours_cpu" "$ours_vz"
-printf '%-8s %12.1f %16.1f %+14.4f m/s\n' YADE "$theirs" "$theirs_cpu" "$theirs_vz"
-awk -v a="$ours" -v b="$theirs" -v c="$ours_cpu" -v d="$theirs_cpu" 'BEGIN {
-    printf "%-8s %11.1fx %15.1fx   (flexdem / YADE; target >= 20 with 1 thread)\n", "ratio", a / b, c / d }'
-echo "(flexdem: median of $REPEATS runs; steps/CPU-s = steps per second of process CPU time, the"
-echo " speed on an idle core: use it when the machine is shared and the two differ)"
+exec python3 bench/yade/run.py --flexdem "$FLEXDEM" --yade "${YADE:-yade}" --repeats "${REPEATS:-3}" "$@"

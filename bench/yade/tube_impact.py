@@ -1,58 +1,93 @@
 # -*- coding: utf-8 -*-
 """
-The tube impact benchmark of flexdem (`flexdem bench --scene tube_impact`) in YADE 2023.02a:
-the same mesh, materials, time step and steps, to compare the speed (steps per second).
+Speed twin of YADE's tube impact, scenario 2 "solid" (shared/reference/yade/tube_impact/
+tube_impact.py solid): the scene is built by the reference script's code, copied here
+unchanged except that nothing is written and no PyRunner samples the run (output off).
+flexdem's twin: bench/scenes/tube_impact_solid_yade.toml (bench/yade/twin.py tube).
 
-Run:  yade -j 1 -n -x bench/yade/tube_impact.py
-      (environment: TUBE_WARMUP = untimed steps, default 25; TUBE_STEPS = timed steps,
-       default 725: 750 steps of 0.2 ms = the first 0.15 s of examples/tube_impact_solid.toml)
-Prints parseable lines:
-      YADE_STEPS_PER_S <timed steps / wall seconds of O.run(TUBE_STEPS, True)>
-      YADE_STEPS_PER_CPU_S <timed steps / CPU seconds of the process during that run>
-      YADE_IMPACTOR_VZ <vertical velocity of the sphere at the end, m/s>
-      (and YADE_IMPACTOR_VZ_AT <step> <vz> during the warm-up and at the end)
+Run:  yade -j 1 -n -x bench/yade/tube_impact.py        (bench/run_vs_yade.sh does)
+      environment: WARMUP untimed steps (default 25: the sphere, 1 mm above the tube at 2 m/s,
+      touches it after about 19 steps), STEPS timed steps (default 5800, to t = 0.15 s).
+Prints parseable lines (one value each):
+      YADE_DT          the time step: 0.5 * PWaveTimeStep(), as the reference script sets it
+      YADE_WALL_S      wall seconds of O.run(STEPS, True) after O.run(WARMUP, True)
+      YADE_CPU_S       CPU seconds of the process (all its threads) over the same run
+      YADE_STEPS       STEPS
+      YADE_CONTACTS    real interactions other than the links, at the end
+      YADE_IMPACTOR_VZ the sphere's vertical velocity after WARMUP + STEPS steps (m/s)
+      YADE_IMPACTOR_MASS, YADE_BODIES
 
-SCENE (examples/tube_impact_solid.toml, flexdem's paper_tube(); paper section 7)
-  Tube along x from the origin, radius 0.1 m, length 0.8 m: 21 rings (j = 0..20) of 16 nodes
-  (i = 0..15); node (i, j) = GridNode number 16 j + i at
-      (0.8 j / 20, 0.1 sin(2 pi i / 16), -0.1 cos(2 pi i / 16)),
-  the order and positions of flexdem's tube() builder (its basis for the axis x is
-  e1 = -z, e2 = +y; checked by crates/bench's tests). Each quad (i, j) is split into the
-  PFacets [(i,j), (i+1,j), (i,j+1)] and [(i+1,j), (i+1,j+1), (i,j+1)] (i + 1 modulo 16), in
-  this order; the GridConnections are the PFacets' unique edges in order of first appearance.
-  336 nodes, 976 connections, 640 PFacets, radius 2 mm.  Both end rings (j = 0 and j = 20)
-  clamped: gridNode(fixed=True), blockedDOFs 'xyzXYZ'.
-  Impactor: a sphere of radius 0.1 m at (0.4, 0, 0.207) (5 mm above the tube top, which is
-  node (8, 10)), velocity (0, 0, -2) m/s.
-MATERIALS (tube E = 1 MPa, sphere E = 100 MPa, nu = 0.3, 1000 kg/m3, friction 30 deg)
-  nodes (links): CohFrictMat(young=1e6, poisson=0.3, density=1000, frictionAngle=30 deg,
-                 normalCohesion=shearCohesion=1e100 (unbreakable), momentRotationLaw=True)
-  connections and PFacets (external contacts): FrictMat(young=1e6, poisson=0.3, density=1000, 30 deg)
-  sphere: FrictMat(young=1e8, poisson=0.3, density=1000, 30 deg)
-  Mass: YADE's lumping (each connection puts pi r^2 L rho / 2 on each node), the same as
-  flexdem's default "connections" lumping.
-ENGINES: the standard PFacet list (YADE's examples/pfacet/*.py): sphere-PFacet,
-  PFacet-PFacet and its sub-contacts (node-PFacet, connection-connection), links.
-  No gravity, no damping.  dt fixed at 2e-4 s (flexdem's TUBE_IMPACT_DT).
-Differences that remain: flexdem's links use the beam kinematics (model.md section 3; YADE's
-ratcheting-avoidance factor 2r/L is not applied), and the contact laws differ in the details
-listed in shared/reference/yade-grid-pfacet.md; the speed comparison does not depend on them.
+SCENE (the reference's header has every detail): tube along x, 21 rings x 16 nodes,
+node (i, j) = body 16 i + j at (0.04 i, 0.1 cos th, 0.1 sin th), th = 2 pi (j + 0.5)/16; quads
+split along (i,j)-(i+1,j+1) for i < 10, along (i+1,j)-(i,j+1) for i >= 10; 336 GridNodes,
+976 GridConnections, 640 PFacets, r = 2 mm; CohFrictMat nodes / FrictMat connections and
+PFacets, E = 1 MPa, nu = 0.3, 1000 kg/m3, 30 deg; end rings blockedDOFs 'xyzXYZ'. Sphere r = 0.1,
+E = 100 MPa, density such that its mass is the hollow impactor's (0.1121157 kg), 1 mm above
+the tube, (0, 0, -2) m/s. No gravity, no damping. PFacet-PFacet (tube self-contact) enabled.
 """
 from yade import *
 from yade.gridpfacet import gridNode, gridConnection, pfacet
 import math, os, time
 
-N_AROUND, N_ALONG = 16, 20
-RADIUS, LENGTH, R_NODE = 0.1, 0.8, 0.002
-E_TUBE, E_SPHERE, NU, RHO, PHI = 1e6, 100e6, 0.3, 1000.0, math.radians(30)
-R_SPHERE, CENTER, VELOCITY = 0.1, (0.4, 0.0, 0.207), (0.0, 0.0, -2.0)
-DT = 2e-4
-WARMUP = int(os.environ.get('TUBE_WARMUP', '25'))
-STEPS = int(os.environ.get('TUBE_STEPS', '725'))
+WARMUP = int(os.environ.get('WARMUP', '25'))
+STEPS = int(os.environ.get('STEPS', '5800'))
+
+# ---------------------------------------------------------------- parameters (reference)
+RT, LT, NI, NJ, THOFF = 0.1, 0.8, 21, 16, 0.5
+RN = 0.002
+E_TUBE, E_IMP, NU, RHO, PHI = 1e6, 1e8, 0.3, 1000.0, math.radians(30)
+RS = 0.1
+GAP = 0.001
+V0 = 2.0
+SAFETY = 0.5
+
+
+def octasphere(R):
+	verts, key, tris, NS = [], {}, [], 4
+
+	def vid(p):
+		k = tuple(round(c, 12) for c in p)
+		if k not in key:
+			key[k] = len(verts)
+			verts.append(p)
+		return key[k]
+
+	for sx in (1, -1):
+		for sy in (1, -1):
+			for sz in (1, -1):
+				V = [Vector3(sx, 0, 0), Vector3(0, sy, 0), Vector3(0, 0, sz)]
+				if sx * sy * sz < 0: V = [V[0], V[2], V[1]]
+				g = {}
+				for a in range(NS + 1):
+					for b in range(NS + 1 - a):
+						p = (V[0] * a + V[1] * b + V[2] * (NS - a - b)) / float(NS)
+						g[(a, b)] = vid(p / p.norm() * R)
+				for a in range(NS):
+					for b in range(NS - a):
+						tris.append((g[(a, b)], g[(a + 1, b)], g[(a, b + 1)]))
+						if a + b < NS - 1: tris.append((g[(a + 1, b)], g[(a + 1, b + 1)], g[(a, b + 1)]))
+	return verts, tris
+
+
+def unique_edges(tris):
+	edges, seen = [], set()
+	for t in tris:
+		for a, b in ((t[0], t[1]), (t[1], t[2]), (t[2], t[0])):
+			k = (min(a, b), max(a, b))
+			if k not in seen:
+				seen.add(k)
+				edges.append(k)
+	return edges
+
+
+OV, OT = octasphere(RS)
+OE = unique_edges(OT)
+M_HOLLOW = math.pi * RN**2 * RHO * sum((OV[a] - OV[b]).norm() for a, b in OE)
+RHO_S = M_HOLLOW / (4. / 3. * math.pi * RS**3)
 
 O.engines = [
         ForceResetter(),
-        InsertionSortCollider([Bo1_Sphere_Aabb(), Bo1_GridConnection_Aabb(), Bo1_PFacet_Aabb()]),
+        InsertionSortCollider([Bo1_Sphere_Aabb(), Bo1_GridConnection_Aabb(), Bo1_PFacet_Aabb()], label='collider'),
         InteractionLoop(
                 [
                         Ig2_GridNode_GridNode_GridNodeGeom6D(),
@@ -61,74 +96,73 @@ O.engines = [
                         Ig2_GridConnection_PFacet_ScGeom(),
                         Ig2_PFacet_PFacet_ScGeom(),
                 ],
-                [Ip2_CohFrictMat_CohFrictMat_CohFrictPhys(setCohesionNow=True, setCohesionOnNewContacts=False),
-                 Ip2_FrictMat_FrictMat_FrictPhys()],
+                [
+                        Ip2_CohFrictMat_CohFrictMat_CohFrictPhys(setCohesionNow=True, setCohesionOnNewContacts=False),
+                        Ip2_FrictMat_FrictMat_FrictPhys()
+                ],
                 [
                         Law2_ScGeom6D_CohFrictPhys_CohesionMoment(),
+                        Law2_ScGeom_FrictPhys_CundallStrack(),
                         Law2_ScGridCoGeom_FrictPhys_CundallStrack(),
                         Law2_GridCoGridCoGeom_FrictPhys_CundallStrack(),
                 ],
         ),
-        NewtonIntegrator(gravity=(0, 0, 0), damping=0.0),
+        NewtonIntegrator(gravity=(0, 0, 0), damping=0.0, label='newton'),
 ]
+
 O.materials.append(
         CohFrictMat(
-                young=E_TUBE, poisson=NU, density=RHO, frictionAngle=PHI, normalCohesion=1e100, shearCohesion=1e100,
-                momentRotationLaw=True, label='nodeMat'
+                young=E_TUBE, poisson=NU, density=RHO, frictionAngle=PHI, normalCohesion=1e100, shearCohesion=1e100, momentRotationLaw=True,
+                label='tubeNode'
         )
 )
-O.materials.append(FrictMat(young=E_TUBE, poisson=NU, density=RHO, frictionAngle=PHI, label='tubeMat'))
-O.materials.append(FrictMat(young=E_SPHERE, poisson=NU, density=RHO, frictionAngle=PHI, label='sphereMat'))
+O.materials.append(FrictMat(young=E_TUBE, poisson=NU, density=RHO, frictionAngle=PHI, label='tubeExt'))
+O.materials.append(FrictMat(young=E_IMP, poisson=NU, density=RHO_S, frictionAngle=PHI, label='sphereMat'))
 
 
-def node_position(i, j):
-	theta = 2.0 * math.pi * i / N_AROUND
-	return Vector3(LENGTH * j / N_ALONG, RADIUS * math.sin(theta), -RADIUS * math.cos(theta))
+def build_mesh(verts, tris, nodeMat, extMat, color, mask=1):
+	nids = [O.bodies.append(gridNode(v, RN, wire=False, fixed=False, material=nodeMat, color=color)) for v in verts]
+	edges = unique_edges(tris)
+	cids = [O.bodies.append(gridConnection(nids[a], nids[b], RN, material=extMat, color=color, mask=mask)) for a, b in edges]
+	pids = [O.bodies.append(pfacet(nids[t[0]], nids[t[1]], nids[t[2]], wire=False, material=extMat, color=color, mask=mask)) for t in tris]
+	return nids, edges, cids, pids
 
 
-nodes = []
-for j in range(N_ALONG + 1):
-	for i in range(N_AROUND):
-		fixed = j == 0 or j == N_ALONG
-		nodes.append(O.bodies.append(gridNode(node_position(i, j), R_NODE, wire=False, fixed=fixed, material='nodeMat')))
+tverts = []
+for i in range(NI):
+	for j in range(NJ):
+		th = 2 * math.pi * (j + THOFF) / NJ
+		tverts.append(Vector3(LT * i / (NI - 1), RT * math.cos(th), RT * math.sin(th)))
+tid = lambda i, j: NJ * i + (j % NJ)
+ttris = []
+for i in range(NI - 1):
+	for j in range(NJ):
+		if i < (NI - 1) // 2:
+			ttris += [(tid(i, j), tid(i + 1, j), tid(i + 1, j + 1)), (tid(i, j), tid(i + 1, j + 1), tid(i, j + 1))]
+		else:
+			ttris += [(tid(i, j), tid(i + 1, j), tid(i, j + 1)), (tid(i + 1, j), tid(i + 1, j + 1), tid(i, j + 1))]
+tN, tE, tC, tP = build_mesh(tverts, ttris, 'tubeNode', 'tubeExt', Vector3(0.2, 0.4, 0.8))
+for i in (0, NI - 1):
+	for j in range(NJ):
+		O.bodies[tN[tid(i, j)]].state.blockedDOFs = 'xyzXYZ'
+ZTOP = max(v[2] for v in tverts)
+Z0 = ZTOP + RN + RS + GAP
+sid = O.bodies.append(sphere(Vector3(0.4, 0, Z0), RS, material='sphereMat', color=Vector3(0.8, 0.2, 0.2)))
+O.bodies[sid].state.vel = Vector3(0, 0, -V0)
 
+O.dt = SAFETY * PWaveTimeStep()
 
-def node(i, j):
-	return nodes[(i % N_AROUND) + j * N_AROUND]
-
-
-faces = []
-for j in range(N_ALONG):
-	for i in range(N_AROUND):
-		faces.append((node(i, j), node(i + 1, j), node(i, j + 1)))
-		faces.append((node(i + 1, j), node(i + 1, j + 1), node(i, j + 1)))
-edges = {}
-for f in faces:
-	for k in range(3):
-		a, b = f[k], f[(k + 1) % 3]
-		key = (min(a, b), max(a, b))
-		if key not in edges:
-			edges[key] = O.bodies.append(gridConnection(a, b, R_NODE, material='tubeMat'))
-pfacets = [O.bodies.append(pfacet(a, b, c, wire=False, color=Vector3(0.6, 0.6, 0.6), material='tubeMat')) for (a, b, c) in faces]
-impactor = O.bodies.append(sphere(CENTER, R_SPHERE, material='sphereMat'))
-O.bodies[impactor].state.vel = Vector3(*VELOCITY)
-O.dt = DT
-print('YADE_COUNTS nodes %d connections %d pfacets %d mass_tube %.9g mass_sphere %.9g' %
-      (len(nodes), len(edges), len(pfacets), sum(O.bodies[n].state.mass for n in nodes), O.bodies[impactor].state.mass))
-
-for k in range(WARMUP):
-	O.run(1, True)
-	if (k + 1) % 5 == 0:
-		print('YADE_IMPACTOR_VZ_AT %d %.9g' % (O.iter, O.bodies[impactor].state.vel[2]))
-t0, c0 = time.time(), time.process_time()
+# ---------------------------------------------------------------- timing (output off)
+if WARMUP > 0: O.run(WARMUP, True)  # O.run(0) would run for ever
+w0, c0 = time.perf_counter(), time.process_time()
 O.run(STEPS, True)
-wall, cpu = time.time() - t0, time.process_time() - c0
-vz = O.bodies[impactor].state.vel[2]
-print('YADE_IMPACTOR_VZ_AT %d %.9g' % (O.iter, vz))
-print('YADE_IMPACTOR_Z %.9g' % O.bodies[impactor].state.pos[2])
-print('YADE_INTERACTIONS real %d' % sum(1 for i in O.interactions if i.isReal))
+wall, cpu = time.perf_counter() - w0, time.process_time() - c0
+contacts = sum(1 for I in O.interactions if not isinstance(I.geom, GridNodeGeom6D))
+print('YADE_DT %r' % O.dt)
 print('YADE_WALL_S %.6f' % wall)
 print('YADE_CPU_S %.6f' % cpu)
-print('YADE_STEPS_PER_S %.6f' % (STEPS / wall))
-print('YADE_STEPS_PER_CPU_S %.6f' % (STEPS / cpu))
-print('YADE_IMPACTOR_VZ %.9g' % vz)
+print('YADE_STEPS %d' % STEPS)
+print('YADE_CONTACTS %d' % contacts)
+print('YADE_IMPACTOR_VZ %.9e' % O.bodies[sid].state.vel[2])
+print('YADE_IMPACTOR_MASS %r' % O.bodies[sid].state.mass)
+print('YADE_BODIES %d' % len(O.bodies))
