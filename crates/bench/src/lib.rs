@@ -4,8 +4,8 @@
 //! integration), the memory per element and whether the final state is the same for every
 //! thread count.
 //!
-//! Scenes ([`SceneKind`]): the paper's tube impact (§7) with a fixed time step (the same
-//! scene runs in YADE: `bench/yade/tube_impact.py`); a PFacet membrane of about 10³–10⁶
+//! Scenes ([`SceneKind`]): the paper's tube impact (§7, the heavy sphere) with a fixed time
+//! step; a PFacet membrane of about 10³–10⁶
 //! PFacets, edges pinned, under a layer of spheres; spheres falling in a box of walls; and
 //! any scene file ([`Case::File`]: the twins of other codes' inputs under `bench/`).
 //!

@@ -10,15 +10,16 @@ use flexdem_geom::{Real, Vec3};
 use flexdem_integrate::{Settings, Simulation, TimeStep};
 use std::path::Path;
 
-/// The tube impact scene file (`examples/tube_impact_heavy.toml`: the 4.19 kg sphere, the
-/// scene of the YADE comparison `bench/run_vs_yade.sh`), embedded so that the
-/// benchmark runs from any folder.
+/// The tube impact scene file (`examples/tube_impact_heavy.toml`: the 4.19 kg sphere),
+/// embedded so that the benchmark runs from any folder. It is flexdem's own speed scene; the
+/// YADE comparison (`bench/run_vs_yade.sh`) runs the twin of YADE's reference run instead
+/// (`bench/scenes/tube_impact_solid_yade.toml`: the light sphere, YADE's mesh and dt).
 const TUBE_IMPACT_TOML: &str = include_str!("../../../examples/tube_impact_heavy.toml");
 
-/// Fixed time step of the tube impact benchmark (s), used by the YADE script too
-/// (`bench/yade/tube_impact.py`). flexdem's critical step estimate (links and contacts) is
-/// 8.9e-4 s at the start and stays above 3.7e-4 s over the 750 steps (0.15 s) of the
-/// benchmark (tested), so 2e-4 s is at most 0.54 of it.
+/// Fixed time step of the tube impact benchmark (s). flexdem's critical step estimate (links
+/// and contacts) is 8.9e-4 s at the start and stays above 3.7e-4 s over the 750 steps
+/// (0.15 s) of the benchmark (tested), so 2e-4 s is at most 0.54 of it. (It is above YADE's
+/// own P-wave step for this scene, 1.71e-4 s, which is why the YADE twin does not use it.)
 pub const TUBE_IMPACT_DT: Real = 2e-4;
 
 /// Size of the tube impact scene: its PFacet count (it has one size only).

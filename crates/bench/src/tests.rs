@@ -66,14 +66,14 @@ fn packing_counts_and_walls() {
 }
 
 #[test]
-fn tube_impact_is_the_scene_file_with_a_fixed_step_and_the_node_order_of_the_yade_script() {
+fn tube_impact_is_the_scene_file_with_a_fixed_step_and_its_node_order() {
     let (model, settings) = SceneKind::TubeImpact.build(640).unwrap();
     assert_eq!(settings.time_step, TimeStep::Fixed(TUBE_IMPACT_DT));
     assert_eq!(
         (model.particles.len(), model.connections.len(), model.pfacets.len()),
         (337, 976, 640)
     );
-    // bench/yade/tube_impact.py builds node (i, j) at x = 0.04 j, y = 0.1 sin θ,
+    // the scene file builds node (i, j) at x = 0.04 j, y = 0.1 sin θ,
     // z = −0.1 cos θ, θ = 2πi/16, as node 16 j + i, and the PFacets
     // (i, j), (i+1, j), (i, j+1) and (i+1, j), (i+1, j+1), (i, j+1) per quad, in this order.
     let pos = &model.particles.pos;
