@@ -83,7 +83,11 @@ pub fn separated_along(a: &Hull, b: &Hull, axis: &Vec3) -> bool {
 
 /// Whether `a` and `b` are proven apart, by the axis joining their centroids, then (for
 /// PFacets) by their face normals, on either side: with n the unit normal of a PFacet h and o
-/// the other body, apart when min_o(x·n) − h₀·n > r_a + r_b or h₀·n − max_o(x·n) > r_a + r_b.
+/// the other body, apart when min_o(x·n) − h₀·n > r_a + r_b or h₀·n − max_o(x·n) > r_a + r_b;
+/// then, for two PFacets, by their in-plane edge normals u (pointing out of the PFacet):
+/// min_o(x·u) − max_h(x·u) > (r_a + r_b)·|u|. The last separates the near misses of a flat
+/// mesh whose nodes are thick next to its cells (triangles two cells apart, side by side in
+/// one plane), which neither the centroid axis nor the face normals can.
 pub fn proven_apart(a: &Hull, b: &Hull) -> bool {
     let axis = b.centroid - a.centroid;
     if separated_along(a, b, &axis) {
@@ -104,7 +108,29 @@ pub fn proven_apart(a: &Hull, b: &Hull) -> bool {
             }
         }
     }
-    false
+    // two PFacets only: a sphere or a connection beside a PFacet is separated by the centroid
+    // axis already, and the test would be paid by every sphere resting on a membrane
+    a.count == 3 && b.count == 3 && (apart_beyond_an_edge(a, b) || apart_beyond_an_edge(b, a))
+}
+
+/// Whether `other` lies beyond one of PFacet `h`'s edges by more than the two radii, along
+/// that edge's in-plane normal u = (x_{k+1} − x_k) × n (pointing out of the triangle, with
+/// |u| = |x_{k+1} − x_k| since n is a unit normal to the edge): min_other(x·u) − x_k·u >
+/// (r_h + r_other)·|u|, the edge's corners being h's farthest points along u. Computed only
+/// for the pairs that reach it, and compared squared (no square root).
+#[inline]
+fn apart_beyond_an_edge(h: &Hull, other: &Hull) -> bool {
+    if h.normal == Vec3::zeros() {
+        return false;
+    }
+    let reach = h.radius + other.radius;
+    (0..3).any(|k| {
+        let edge = h.points[(k + 1) % 3] - h.points[k];
+        let u = edge.cross(&h.normal);
+        let from = h.points[k].dot(&u);
+        let gap = other.skeleton().iter().map(|x| x.dot(&u)).fold(Real::INFINITY, Real::min) - from;
+        gap > 0.0 && gap * gap > reach * reach * edge.norm_squared()
+    })
 }
 
 #[cfg(test)]
@@ -143,6 +169,33 @@ mod tests {
         assert!(proven_apart(&a, &b));
         let c = tri(base.map(|p| p + Vec3::new(0.0, 0.0, 0.019)), 0.01);
         assert!(!proven_apart(&a, &c));
+    }
+
+    /// Two triangles of a flat mesh that share no node, side by side 9 mm apart with nodes of
+    /// 3 mm: the centroid axis and the face normals cannot separate them, an edge normal does.
+    #[test]
+    fn side_by_side_triangles_are_apart_along_an_edge_normal() {
+        let h = 0.0127;
+        // YADE's membrane scaling mesh (N = 80): cells split along (i, j)–(i+1, j+1)
+        let a =
+            tri([Vec3::new(0.0, 0.0, 0.0), Vec3::new(h, 0.0, 0.0), Vec3::new(h, h, 0.0)], 0.003);
+        let b = tri(
+            [Vec3::new(0.0, h, 0.0), Vec3::new(h, 2.0 * h, 0.0), Vec3::new(0.0, 2.0 * h, 0.0)],
+            0.003,
+        );
+        let cp = closest_points_triangle_triangle(
+            &a.points[0],
+            &a.points[1],
+            &a.points[2],
+            &b.points[0],
+            &b.points[1],
+            &b.points[2],
+        );
+        let distance = (cp.point_1 - cp.point_0).norm();
+        assert!(distance > 0.006, "{distance}");
+        let axis = b.centroid - a.centroid;
+        assert!(!separated_along(&a, &b, &axis), "the centroid axis already separates them");
+        assert!(proven_apart(&a, &b));
     }
 
     fn vec3() -> impl Strategy<Value = Vec3> {
