@@ -219,3 +219,29 @@ fn results_do_not_depend_on_the_thread_count() {
     let (one, two) = (run(1), run(2));
     assert!(one.iter().zip(&two).all(|(a, b)| a == b), "positions differ between 1 and 2 threads");
 }
+
+/// Two PFacets of one structure, stacked 1.5 r apart (they overlap): one contact when the
+/// structure touches itself, none with `self_contact` off (the collider never pairs them).
+#[test]
+fn a_structure_with_self_contact_off_does_not_touch_itself() {
+    for on in [true, false] {
+        let mut model = Model::new();
+        let m = model.add_material(Material::new(1e7, 0.3, 1000.0, 0.5).unwrap()).unwrap();
+        let r = 0.01;
+        let s = model.add_structure("folded").unwrap();
+        model.set_self_contact(s, on).unwrap();
+        for z in [0.0, 1.5 * r] {
+            let corners = [[0.0, 0.0, z], [1.0, 0.0, z], [0.0, 1.0, z]];
+            let n = corners.map(|p| model.add_node(s, Vec3::from(p), r, m, 1).unwrap());
+            let e = [[n[0], n[1]], [n[1], n[2]], [n[2], n[0]]]
+                .map(|pair| model.add_connection(s, pair, r, m, 1).unwrap());
+            model.add_pfacet(s, n, e, r, m, 1).unwrap();
+        }
+        let nodes = model.structures[s as usize].nodes.clone();
+        model.block(nodes, Dofs::ALL).unwrap();
+        let settings = Settings { time_step: TimeStep::Fixed(1e-6), ..Settings::default() };
+        let mut sim = Simulation::new(model, settings).unwrap();
+        sim.step().unwrap();
+        assert_eq!(sim.contacts().len(), usize::from(on), "self_contact = {on}");
+    }
+}

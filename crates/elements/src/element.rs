@@ -80,6 +80,9 @@ pub struct Structure {
     pub connections: Range<ConnectionId>,
     /// Its PFacets.
     pub pfacets: Range<PFacetId>,
+    /// Whether its elements touch one another (self-contact; elements sharing a node never
+    /// do). `false` skips those pairs in the collider, as YADE's `avoidSelfInteractionMask`.
+    pub self_contact: bool,
 }
 
 #[cfg(test)]

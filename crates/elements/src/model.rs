@@ -124,8 +124,22 @@ impl Model {
             nodes: p..p,
             connections: c..c,
             pfacets: f..f,
+            self_contact: true,
         });
         Ok(id)
+    }
+
+    /// Whether the elements of structure `id` touch one another (they do by default).
+    pub fn set_self_contact(&mut self, id: StructureId, on: bool) -> Result<(), ModelError> {
+        self.structure(id)?;
+        self.structures[id as usize].self_contact = on;
+        Ok(())
+    }
+
+    /// Whether two elements of structures `sa` and `sb` are parts of one structure whose
+    /// self-contact is off (so they never pair).
+    pub fn self_contact_off(&self, sa: StructureId, sb: StructureId) -> bool {
+        sa == sb && self.structures.get(sa as usize).is_some_and(|s| !s.self_contact)
     }
 
     /// Adds a node at rest to `structure` (which must be the last one, with nothing added

@@ -182,6 +182,15 @@ impl Collider {
     }
 
     /// Nodes of an element (empty for a free sphere).
+    /// The structure of element `e` (`NO_STRUCTURE` for a free sphere).
+    fn structure(model: &Model, e: Element) -> u32 {
+        match e {
+            Element::Particle(i) => model.particles.structure[i as usize],
+            Element::Connection(k) => model.connections[k as usize].structure,
+            Element::PFacet(k) => model.pfacets[k as usize].structure,
+        }
+    }
+
     fn nodes(model: &Model, e: Element) -> &[u32] {
         match e {
             Element::Particle(_) => &[],
@@ -191,7 +200,8 @@ impl Collider {
     }
 
     /// Rebuilds the boxes and candidate pairs: boxes of the skeletons grown by the radius and
-    /// by the element's margin; pairs whose masks share a bit and that share no node.
+    /// by the element's margin; pairs whose masks share a bit, that share no node and that are
+    /// not two parts of a structure whose self-contact is off.
     pub fn rebuild(&mut self, model: &Model) {
         let p = &model.particles;
         self.boxes.clear();
@@ -219,6 +229,7 @@ impl Collider {
             let (a, b) = (elements[i as usize], elements[j as usize]);
             Self::mask(model, a) & Self::mask(model, b) != 0
                 && !Self::nodes(model, a).iter().any(|n| Self::nodes(model, b).contains(n))
+                && !model.self_contact_off(Self::structure(model, a), Self::structure(model, b))
         };
         self.broad.overlapping_pairs(&self.boxes, accept, &mut self.pairs);
         self.split_sphere_pairs(model);

@@ -395,7 +395,8 @@ fn foreign_and_odd_files_give_their_error() {
     // 3: the `State` before the wall controls of version 4;
     // 4: the `State` before its pressures on PFacets;
     // 5: the `State` before the free spheres' neighbour list;
-    // 6: the `State` before the viscous contact damping
+    // 6: the `State` before the viscous contact damping;
+    // 7: the `State` before a structure's self-contact switch
     let older = [
         (CHECKPOINT_VERSION + 1, "newer"),
         (0, "older"),
@@ -403,8 +404,9 @@ fn foreign_and_odd_files_give_their_error() {
         (4, "older"),
         (5, "older"),
         (6, "older"),
+        (7, "older"),
     ];
-    assert_eq!(CHECKPOINT_VERSION, 7);
+    assert_eq!(CHECKPOINT_VERSION, 8);
     for (version, word) in older {
         let mut bytes = valid.to_vec();
         bytes[8..12].copy_from_slice(&version.to_le_bytes());

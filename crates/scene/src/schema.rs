@@ -210,6 +210,7 @@ pub(crate) struct StructureSpec {
     pub node_radius: S<f64>,
     pub mass: Option<S<String>>,
     pub mask: Option<S<i64>>,
+    pub self_contact: Option<S<bool>>,
     pub velocity: Option<S<V3>>,
     pub placement: Option<S<PlacementSpec>>,
     // chain

@@ -183,8 +183,11 @@ impl Builder<'_> {
             Some(v) => ctx.vec3(v, "structures.velocity", "m/s")?,
             None => Vec3::zeros(),
         };
-        let opts =
-            StructureOptions::new(name.clone(), radius, material).with_mask(mask).with_mass(mass);
+        let self_contact = st.self_contact.as_ref().is_none_or(|v| *v.get_ref());
+        let opts = StructureOptions::new(name.clone(), radius, material)
+            .with_mask(mask)
+            .with_mass(mass)
+            .with_self_contact(self_contact);
         let (id, layout) = self.build_kind(st, kind, table.clone(), place.scale, &opts)?;
         let nodes = self.model.structures[id as usize].nodes.clone();
         for n in nodes {
@@ -192,7 +195,11 @@ impl Builder<'_> {
             self.model.particles.pos[n] = place.apply_rigid(self.model.particles.pos[n]);
             self.model.particles.vel[n] = velocity;
         }
-        if let Some(o) = flexdem_elements::self_overlap::self_overlap(&self.model, id) {
+        // a structure that does not touch itself may overlap itself
+        let overlap = self_contact
+            .then(|| flexdem_elements::self_overlap::self_overlap(&self.model, id))
+            .flatten();
+        if let Some(o) = overlap {
             return Err(ctx.at(
                 table,
                 "structures",

@@ -387,3 +387,31 @@ fn a_servo_follows_the_section_between_walls_and_refuses_a_bad_one() {
     let e = err("servo = { stress = 1e5, area_of = { membrane = \"tube\", platens = [0, 1] }, max_speed = 0.1 }");
     assert!(e.contains("walls.servo.area_of.membrane"), "{e}");
 }
+
+/// `self_contact = false`: the structure's elements never pair, so a chain thicker than its
+/// segments (an error with self-contact, see tests/data/scenes/bad) is accepted; a value that
+/// is not a boolean is an error naming the key.
+#[test]
+fn self_contact_off_is_kept_and_allows_a_structure_that_overlaps_itself() {
+    let chain = r#"
+[[structures]]
+name = "cable"
+kind = "chain"
+material = "m"
+node_radius = 0.01
+start = [0, 0, 0]
+end = [1, 0, 0]
+segments = 200
+"#;
+    let thick = parse_scene(&format!("{HEAD}{chain}"), Path::new("t.toml")).unwrap_err();
+    assert!(thick.to_string().contains("overlaps itself"), "{thick}");
+    let s = scene(&format!("{chain}self_contact = false\n"));
+    assert!(!s.model.structures[0].self_contact);
+    assert!(
+        scene(chain.replace("segments = 200", "segments = 10").as_str()).model.structures[0]
+            .self_contact
+    );
+    let typo = format!("{HEAD}{chain}self_contact = \"no\"\n");
+    let err = parse_scene(&typo, Path::new("t.toml")).unwrap_err().to_string();
+    assert!(err.contains("self_contact"), "{err}");
+}

@@ -24,10 +24,13 @@ pub struct StructureOptions {
     pub mask: u32,
     /// How the elements' mass is lumped into the nodes.
     pub mass: MassLumping,
+    /// Whether the structure's elements touch one another ([`crate::Structure::self_contact`]).
+    pub self_contact: bool,
 }
 
 impl StructureOptions {
-    /// Options with mask 1 and YADE's mass lumping ([`MassLumping::Connections`]).
+    /// Options with mask 1, YADE's mass lumping ([`MassLumping::Connections`]) and
+    /// self-contact on.
     pub fn new(name: impl Into<String>, radius: Real, material: MaterialId) -> Self {
         StructureOptions {
             name: name.into(),
@@ -35,7 +38,14 @@ impl StructureOptions {
             material,
             mask: 1,
             mass: MassLumping::Connections,
+            self_contact: true,
         }
+    }
+
+    /// The same options with self-contact on or off.
+    pub fn with_self_contact(mut self, on: bool) -> Self {
+        self.self_contact = on;
+        self
     }
 
     /// The same options with collision mask `mask`.
@@ -135,6 +145,7 @@ fn add_checked_skeleton(
 ) -> Result<StructureId, BuildError> {
     let (r, m, mask) = (opts.radius, opts.material, opts.mask);
     let s = model.add_structure(&opts.name)?;
+    model.set_self_contact(s, opts.self_contact)?;
     let first_node = model.particles.len() as u32;
     for &p in &skeleton.points {
         model.add_node(s, p, r, m, mask)?;

@@ -28,7 +28,7 @@
 //! free spheres' neighbour list (`Contacts::pairs`: their touching pairs, with their history);
 //! version 7 the viscous contact damping (a material's `damping`, a contact's dashpots `cn`,
 //! `ct`, their dissipation: `Dissipation::viscous`, `Energy::contact_damping` and its pending
-//! half).
+//! half); version 8 a structure's self-contact switch (`Structure::self_contact`).
 //! Files of older versions are refused with the version error, which says so.
 //!
 //! # Writing
@@ -70,7 +70,7 @@ use std::path::{Path, PathBuf};
 pub const CHECKPOINT_MAGIC: [u8; 8] = *b"FLXDMCKP";
 
 /// The format version this build writes and reads (see the module documentation).
-pub const CHECKPOINT_VERSION: u32 = 7;
+pub const CHECKPOINT_VERSION: u32 = 8;
 
 /// Size of the header before the payload: magic, version, length, checksum (bytes).
 pub const CHECKPOINT_HEADER_LEN: usize = 24;
