@@ -66,6 +66,10 @@ def scene_table():
         t['membrane%d' % n] = dict(
             toml=os.path.join(GEN_DIR, 'membrane_N%d.toml' % n),
             make=(lambda n: lambda d: twin.write_membrane(d, n))(n), dt=(lambda n: lambda: twin.membrane_params(n)[-1])(n),
+            # flexdem's twin of each YADE variant: self-contact on / off (self_contact = false)
+            flexdem={'self': os.path.join(GEN_DIR, 'membrane_N%d.toml' % n),
+                     'noself': os.path.join(GEN_DIR, 'membrane_N%d_noself.toml' % n)},
+            make_variants=(lambda n: lambda d: twin.write_membrane(d, n, False))(n),
             warmup=env_int('MEMBRANE_WARMUP', 50), steps=env_int('MEMBRANE_STEPS', 200),
             yade=[('noself', ['membrane_scaling.py', str(n), 'noself']), ('self', ['membrane_scaling.py', str(n), 'self'])],
             checks=[('sphere (N/4, N/4) vz (m/s)', ('tracked', 'probe_sphere_velocity', 'probe_sphere_velocity_vz_m_per_s'), 'YADE_SPHERE_VZ'),
@@ -142,6 +146,13 @@ def run_scene(name, sc, a):
                 sys.exit('%s differs from what bench/yade/twin.py writes: regenerate it' % toml)
     else:
         sc['make'](GEN_DIR)
+        if 'make_variants' in sc:
+            sc['make_variants'](GEN_DIR)
+    # flexdem's scene per variant: the twin of each YADE variant where flexdem has one
+    fvariants = sc.get('flexdem', {'': toml})
+
+    def fkey(variant):
+        return variant if variant in fvariants else next(iter(fvariants))
     W, N = sc['warmup'], sc['steps']
     dt = sc['dt']()
     print('\n== %s: %s' % (name, sc['what']))
@@ -152,10 +163,14 @@ def run_scene(name, sc, a):
     trial = run_flexdem(a.flexdem, toml, W, N)
     k = max(1, min(50, math.ceil(MIN_FLEXDEM_S / trial['wall_s'])))
     for r in range(1, a.repeats + 1):
-        la = loadavg()
-        f = run_flexdem(a.flexdem, toml, W, N, k)
-        rows.append(dict(scene=name, code='flexdem', variant='', repeat=r, load=la, **f))
-        msg = ['repeat %d: flexdem %.3f ms/step (CPU %.3f; mean of %d runs)' % (r, fmt_ms(f['wall_s'], N), fmt_ms(f['cpu_s'], N), k)]
+        msg = []
+        for fv, ftoml in fvariants.items():
+            la = loadavg()
+            f = run_flexdem(a.flexdem, ftoml, W, N, k)
+            rows.append(dict(scene=name, code='flexdem', variant=fv, repeat=r, load=la, **f))
+            msg.append('flexdem%s %.3f ms/step (CPU %.3f; mean of %d runs)'
+                       % (' ' + fv if fv else '', fmt_ms(f['wall_s'], N), fmt_ms(f['cpu_s'], N), k))
+        msg[0] = 'repeat %d: %s' % (r, msg[0])
         for variant, args in sc['yade']:
             la = loadavg()
             y = run_yade(a.yade, args, W, N)
@@ -173,18 +188,21 @@ def run_scene(name, sc, a):
     def med(code, variant, key):
         return statistics.median(row[key] for row in rows if row['code'] == code and row['variant'] == variant)
 
-    fw, fc = med('flexdem', '', 'wall_s'), med('flexdem', '', 'cpu_s')
-    fcont = [row for row in rows if row['code'] == 'flexdem'][-1]['contacts']
     print('   %-16s %10s %10s %12s %13s %9s' % ('', 'ms/step', 'CPU ms/st', 'steps/CPU-s', 'contacts end', 'ratio*'))
-    print('   %-16s %10.3f %10.3f %12.1f %13d %9s' % ('flexdem', fmt_ms(fw, N), fmt_ms(fc, N), N / fc, fcont, ''))
+    for fv in fvariants:
+        fw, fc = med('flexdem', fv, 'wall_s'), med('flexdem', fv, 'cpu_s')
+        fcont = [row for row in rows if row['code'] == 'flexdem' and row['variant'] == fv][-1]['contacts']
+        label = 'flexdem' + (' ' + fv if fv else '')
+        print('   %-16s %10.3f %10.3f %12.1f %13d %9s' % (label, fmt_ms(fw, N), fmt_ms(fc, N), N / fc, fcont, ''))
     summary = []
     for variant, _ in sc['yade']:
+        fw, fc = med('flexdem', fkey(variant), 'wall_s'), med('flexdem', fkey(variant), 'cpu_s')
         yw, yc = med('yade', variant, 'wall_s'), med('yade', variant, 'cpu_s')
         last = [row for row in rows if row['code'] == 'yade' and row['variant'] == variant][-1]
         label = 'YADE' + (' ' + variant if variant else '')
         print('   %-16s %10.3f %10.3f %12.1f %13d %5.1fx/%.1fx' % (label, fmt_ms(yw, N), fmt_ms(yc, N), N / yc, last['contacts'], yw / fw, yc / fc))
         summary.append((name, variant, fw, fc, yw, yc, last['values']))
-    print('   (* ratio = YADE time / flexdem time per step: wall / CPU; medians of %d)' % a.repeats)
+    print('   (* ratio = YADE time / flexdem time per step (flexdem\'s twin of the same variant): wall / CPU; medians of %d)' % a.repeats)
     print('   physical check after %d steps:' % (W + N))
     for label, path, key in sc['checks']:
         ours = dig(summ, path)

@@ -8,7 +8,8 @@ r / sqrt(E / rho_eff), rho_eff = mass / (4/3 pi r^3)); bench/run_vs_yade.sh chec
 the value YADE prints.
 
    python3 bench/yade/twin.py tube     --out DIR    -> DIR/tube_impact_solid_yade.{toml,obj}
-   python3 bench/yade/twin.py membrane --out DIR -n N -> DIR/membrane_N<N>.toml, DIR/membrane_N<N>_spheres.csv
+   python3 bench/yade/twin.py membrane --out DIR -n N -> DIR/membrane_N<N>.toml (self-contact),
+                                                      DIR/membrane_N<N>_noself.toml (none), DIR/membrane_N<N>_spheres.csv
    python3 bench/yade/twin.py net      --out DIR    -> DIR/net_drop_yade.toml
    python3 bench/yade/twin.py dt SCENE [-n N]       -> prints the dt (s) only
 
@@ -253,10 +254,13 @@ def membrane_params(n):
     return h, m, s, rs, spheres, dt
 
 
-def write_membrane(out, n):
+def write_membrane(out, n, self_contact=True):
+    """The twin of membrane_scaling.py N self (self_contact) or N noself (not): the second
+    file, membrane_N<N>_noself.toml, turns the membrane's self-contact off."""
     h, m, s, rs, spheres, dt = membrane_params(n)
-    stem = 'membrane_N%d' % n
-    with open(os.path.join(out, stem + '_spheres.csv'), 'w') as f:
+    base = 'membrane_N%d' % n
+    stem = base if self_contact else base + '_noself'
+    with open(os.path.join(out, base + '_spheres.csv'), 'w') as f:
         f.write('# membrane_scaling.py N=%d: sphere (a, b) at ((a + 0.5) s, (b + 0.5) s, r + R_s), s = 1/%d, in YADE order (a outer)\n' % (n, m))
         f.write('x,y,z,radius\n')
         for p in spheres:
@@ -264,7 +268,7 @@ def write_membrane(out, n):
     c = n // 2
     probe_sphere = (m // 2) * m + (m // 2)  # YADE's sphere index a M + b, a = b = M/2
     toml = f'''# The twin of YADE's membrane scaling run (shared/reference/yade/membrane_scaling/
-# membrane_scaling.py {n} self|noself), for bench/run_vs_yade.sh. Written by
+# membrane_scaling.py {n} {'self' if self_contact else 'noself'}), for bench/run_vs_yade.sh. Written by
 # `python3 bench/yade/twin.py membrane -n {n}`: do not edit, regenerate.
 #
 # Membrane: 1 m x 1 m in z = 0, {n} x {n} nodes at (i h, j h, 0), h = 1/{n - 1} (flexdem's
@@ -272,11 +276,11 @@ def write_membrane(out, n):
 # {2 * (n - 1)**2} PFacets, {3 * (n - 1)**2 + 2 * (n - 1)} connections, radius 3 mm; E = 10 MPa, nu = 0.3,
 # 1000 kg/m3, 30 deg; YADE's mass lumping (connections only); boundary nodes pinned (xyz).
 # (flexdem numbers the nodes i + {n} j, YADE {n} i + j.)
-# Spheres: {m * m} of radius 0.35 s = {rs!r} m (s = 1/{m}), {stem}_spheres.csv (YADE's
+# Spheres: {m * m} of radius 0.35 s = {rs!r} m (s = 1/{m}), {base}_spheres.csv (YADE's
 # centres), 2000 kg/m3, E = 10 MPa, velocity (0, 0, -0.1) m/s, touching the membrane.
 # Gravity -9.81 z, Cundall damping 0.2; dt: YADE's, 0.5 * PWaveTimeStep() = {dt!r} s (fixed).
-# Self-contact: flexdem always pairs non-adjacent elements of a structure (YADE's "self"
-# variant); it has no equivalent of YADE's "noself" masks. Differences: bench/README.md.
+# Self-contact: {'on: non-adjacent elements of the membrane pair (YADE' + "'" + 's "self" variant)' if self_contact else 'off (self_contact = false: YADE' + "'" + 's "noself" masks)'}.
+# Differences: bench/README.md.
 
 [simulation]
 dt = {fmt(dt)}
@@ -306,12 +310,13 @@ origin = [0, 0, 0]
 size = [1.0, 1.0]
 cells = [{n - 1}, {n - 1}]
 mass = "connections"
+self_contact = {'true' if self_contact else 'false'}
 
 [[spheres]]
 name = "spheres"
 kind = "file"
 material = "sphere"
-file = "{stem}_spheres.csv"
+file = "{base}_spheres.csv"
 velocity = [0, 0, -0.1]
 
 [[boundary]]
@@ -443,7 +448,8 @@ def main():
         print(repr(dt))
         return
     os.makedirs(a.out, exist_ok=True)
-    path = {'tube': lambda: write_tube(a.out), 'membrane': lambda: write_membrane(a.out, a.n),
+    path = {'tube': lambda: write_tube(a.out),
+            'membrane': lambda: (write_membrane(a.out, a.n, False), write_membrane(a.out, a.n))[1],
             'net': lambda: write_net(a.out)}[a.scene]()
     print(path)
 
