@@ -6,7 +6,8 @@ use crate::pairs::*;
 use crate::virtual_sphere::{distribute_force, Feature, Site};
 use flexdem_geom::Vec3;
 
-/// A planar fan of `k` triangles around node 0 (at the origin), radius `rho`, in z = 0:
+/// A small mesh: node positions, connections, PFacets and their radius. [`Fan::new`] makes a
+/// planar fan of `k` triangles around node 0 (at the origin), radius `rho`, in z = 0:
 /// ring nodes 1..=k, spokes = connections 0..k (0–i), rim = connections k..2k (i–i+1).
 struct Fan {
     pos: Vec<Vec3>,
@@ -178,21 +179,15 @@ fn concave_valley_gives_one_contact_per_face() {
         Vec3::new(0.0, 1.0, 1.0),
         Vec3::new(0.0, -1.0, 1.0),
     ];
-    let conn_nodes = vec![[0, 1], [1, 2], [2, 0], [1, 3], [3, 0]];
-    let pf_nodes = vec![[0, 1, 2], [1, 0, 3]];
-    let pf_conns = vec![[0, 1, 2], [0, 4, 3]];
-    let topo = Topology {
-        connection_nodes: &conn_nodes,
-        pfacet_nodes: &pf_nodes,
-        pfacet_connections: &pf_conns,
-    };
-    let pf = |f: usize| PFacetRef {
-        id: f as u32,
-        nodes: pf_nodes[f],
-        connections: pf_conns[f],
-        corners: pf_nodes[f].map(|i| pos[i as usize]),
+    let mesh = Fan {
+        pos: pos.to_vec(),
+        conn_nodes: vec![[0, 1], [1, 2], [2, 0], [1, 3], [3, 0]],
+        pf_nodes: vec![[0, 1, 2], [1, 0, 3]],
+        pf_conns: vec![[0, 1, 2], [0, 4, 3]],
         radius: 0.01,
     };
+    let topo = mesh.topology();
+    let pf = |f: usize| mesh.pfacet(f);
     // the walls are at 45 degrees: a sphere on the axis at height z touches both at z/sqrt(2)
     let s = SphereRef { id: SPHERE, center: Vec3::new(0.0, 0.0, 0.3), radius: 0.25 };
     let c: Vec<_> = (0..2)
@@ -232,21 +227,15 @@ fn folds_pressed_together_at_two_places_get_a_contact_at_each() {
         Vec3::new(1.0, -0.1, 1.6 * r),
         Vec3::new(1.0, 0.1, 1.5 * r),
     ];
-    let conn_nodes = vec![[0, 1], [1, 2], [2, 0], [3, 4], [4, 5], [5, 3], [3, 6], [6, 7], [7, 3]];
-    let pf_nodes = vec![[0, 1, 2], [3, 4, 5], [3, 6, 7]];
-    let pf_conns = vec![[0, 1, 2], [3, 4, 5], [6, 7, 8]];
-    let topo = Topology {
-        connection_nodes: &conn_nodes,
-        pfacet_nodes: &pf_nodes,
-        pfacet_connections: &pf_conns,
-    };
-    let pf = |f: usize| PFacetRef {
-        id: f as u32,
-        nodes: pf_nodes[f],
-        connections: pf_conns[f],
-        corners: pf_nodes[f].map(|i| pos[i as usize]),
+    let mesh = Fan {
+        pos: pos.to_vec(),
+        conn_nodes: vec![[0, 1], [1, 2], [2, 0], [3, 4], [4, 5], [5, 3], [3, 6], [6, 7], [7, 3]],
+        pf_nodes: vec![[0, 1, 2], [3, 4, 5], [3, 6, 7]],
+        pf_conns: vec![[0, 1, 2], [3, 4, 5], [6, 7, 8]],
         radius: r,
     };
+    let topo = mesh.topology();
+    let pf = |f: usize| mesh.pfacet(f);
     let c: Vec<_> = [1, 2]
         .map(|f| ElementCandidate {
             element1: Element::PFacet(f as u32),
