@@ -48,6 +48,17 @@ pub fn spring_energy(f: Real, k: Real) -> Real {
     }
 }
 
+/// Energy F²/(2k) of a linear spring from the squared magnitude F² of its force (or moment),
+/// without the square root; 0 when k ≤ 0.
+#[inline]
+pub fn spring_energy_squared(f2: Real, k: Real) -> Real {
+    if k > 0.0 {
+        0.5 * f2 / k
+    } else {
+        0.0
+    }
+}
+
 /// Energy dissipated when a trial force of magnitude `trial` is capped to `capped` on a spring
 /// of stiffness k: the work of the capped force over the slip (|F_trial| − |F_capped|)/k, i.e.
 /// (|F_trial| − |F_capped|)·|F_capped|/k (YADE's form). 0 when k ≤ 0 or nothing was capped.

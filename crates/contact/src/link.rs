@@ -41,7 +41,7 @@
 //! grows by α·ks·|u̇s|dt). Caps dissipate (|F_trial| − |F_cap|)·|F_cap|/k; breakage releases
 //! the elastic energy lost.
 
-use crate::energy::{cap_dissipation, spring_energy, Dissipation};
+use crate::energy::{cap_dissipation, spring_energy, spring_energy_squared, Dissipation};
 use crate::material::{FailureMode, Material};
 use crate::rotation::{rotation_vector, transport_tangent};
 use crate::stiffness::{beam_link_stiffness, LinkStiffness};
@@ -198,6 +198,8 @@ pub struct LinkForces {
     pub torque_on_1: Vec3,
     /// Torque on node 2: −(L/2) n × Fs + (Mt + Mb).
     pub torque_on_2: Vec3,
+    /// The shear force's torque about each node, −(L/2) n × Fs (the same on both).
+    pub lever_torque: Vec3,
     /// Normal force Fn (compression positive).
     pub normal_force: Real,
     /// Shear force on node 2.
@@ -225,6 +227,10 @@ struct Trial {
 
 /// One step of a beam link (eq 1, 2, 5–8; see the module documentation for the kinematics,
 /// limits and failure rules). Updates `state` and returns the forces and torques on both nodes.
+///
+/// Inlined into the links' loop, where only the fields of [`LinkLoad`] are kept: the rest is
+/// computed only for callers that read it.
+#[inline]
 pub fn update_link(
     params: &LinkParams,
     state: &mut LinkState,
@@ -237,13 +243,15 @@ pub fn update_link(
     let k = &params.stiffness;
     let d = kin.x2 - kin.x1;
     let l = d.norm();
-    let n = if l > 0.0 { d / l } else { state.normal };
+    // one division for n and α (a division is as slow as a square root)
+    let inv_l = if l > 0.0 { 1.0 / l } else { 0.0 };
+    let n = if l > 0.0 { d * inv_l } else { state.normal };
     let spin = 0.5 * n.dot(&(kin.w1 + kin.w2));
     let rotated = transport_tangent(state.shear_force, state.normal, n, spin * dt);
     let mut us = (kin.v2 - kin.v1) - (kin.w1 + kin.w2).cross(&n) * (0.5 * l);
     us -= n * n.dot(&us);
     let alpha = match params.mode {
-        LinkKinematicsMode::Yade if l > 0.0 => 2.0 * params.radius / l,
+        LinkKinematicsMode::Yade if l > 0.0 => 2.0 * params.radius * inv_l,
         _ => 1.0,
     };
     let ks = k.ks * alpha;
@@ -261,6 +269,7 @@ pub fn update_link(
     }
 }
 
+#[inline]
 fn cohesive_step(p: &LinkParams, s: &mut LinkState, kin: &LinkKinematics, t: &Trial) -> LinkForces {
     let k = &p.stiffness;
     let lim = &p.strength;
@@ -280,12 +289,13 @@ fn cohesive_step(p: &LinkParams, s: &mut LinkState, kin: &LinkKinematics, t: &Tr
     } else {
         (Vec3::zeros(), Vec3::zeros(), Vec3::zeros(), UnitQuaternion::identity())
     };
-    let fs_trial_mag = t.fs.norm();
-    let (mt_mag, mb_mag) = (mt.norm(), mb.norm());
+    // squared magnitudes: the square roots are taken only where a limit is reached
+    let fs2 = t.fs.norm_squared();
+    let (mt2, mb2) = (mt.norm_squared(), mb.norm_squared());
     let e_trial = spring_energy(t.fn_, k.kn)
-        + spring_energy(fs_trial_mag, t.ks)
-        + spring_energy(mt_mag, k.kt)
-        + spring_energy(mb_mag, k.kb);
+        + spring_energy_squared(fs2, t.ks)
+        + spring_energy_squared(mt2, k.kt)
+        + spring_energy_squared(mb2, k.kb);
     let fragile = p.failure == FailureMode::Fragile;
     let mut diss = Dissipation::default();
 
@@ -311,25 +321,28 @@ fn cohesive_step(p: &LinkParams, s: &mut LinkState, kin: &LinkKinematics, t: &Tr
     }
 
     // Shear and moment limits (eq 7, lines 2–4).
-    let shear_cap = lim.shear_limit(fn_).filter(|&c| fs_trial_mag > c);
-    let twist_cap = lim.twist_moment.filter(|&c| p.moments && mt_mag > c);
-    let bend_cap = lim.bending_moment.filter(|&c| p.moments && mb_mag > c);
+    let shear_cap = lim.shear_limit(fn_).filter(|&c| exceeds(fs2, c));
+    let twist_cap = lim.twist_moment.filter(|&c| p.moments && exceeds(mt2, c));
+    let bend_cap = lim.bending_moment.filter(|&c| p.moments && exceeds(mb2, c));
     if fragile && (shear_cap.is_some() || twist_cap.is_some() || bend_cap.is_some()) {
         s.status = LinkStatus::Frictional;
         return frictional_step(p, s, t, e_trial, true);
     }
     let mut fs = t.fs;
     if let Some(c) = shear_cap {
-        fs = scale_to(t.fs, fs_trial_mag, c);
-        diss.plastic += cap_dissipation(fs_trial_mag, c, t.ks);
+        let mag = fs2.sqrt();
+        fs = scale_to(t.fs, mag, c);
+        diss.plastic += cap_dissipation(mag, c, t.ks);
     }
     if let Some(c) = twist_cap {
-        mt = scale_to(mt, mt_mag, c);
-        diss.plastic += cap_dissipation(mt_mag, c, k.kt);
+        let mag = mt2.sqrt();
+        mt = scale_to(mt, mag, c);
+        diss.plastic += cap_dissipation(mag, c, k.kt);
     }
     if let Some(c) = bend_cap {
-        mb = scale_to(mb, mb_mag, c);
-        diss.plastic += cap_dissipation(mb_mag, c, k.kb);
+        let mag = mb2.sqrt();
+        mb = scale_to(mb, mag, c);
+        diss.plastic += cap_dissipation(mag, c, k.kb);
     }
     if twist_cap.is_some() || bend_cap.is_some() {
         // New elastic rotation from the capped moments; the rest is plastic.
@@ -353,6 +366,7 @@ fn cohesive_step(p: &LinkParams, s: &mut LinkState, kin: &LinkKinematics, t: &Tr
 /// A link without cohesion: compression-only spring with Coulomb friction, no moments; broken
 /// when in tension. `losing` marks the step in which cohesion is lost (the energy released then,
 /// `e_trial` minus what remains, is counted as breakage rather than friction).
+#[inline]
 fn frictional_step(
     p: &LinkParams,
     s: &mut LinkState,
@@ -393,6 +407,7 @@ fn frictional_step(
 }
 
 /// Forces and torques on both nodes from the link's Fn, Fs (on node 2) and moments (on node 2).
+#[inline]
 fn assemble(
     n: Vec3,
     l: Real,
@@ -412,6 +427,7 @@ fn assemble(
         force_on_2: f2,
         torque_on_1: lever - m,
         torque_on_2: lever + m,
+        lever_torque: lever,
         normal_force: fn_,
         shear_force: fs,
         twist_moment: mt,
@@ -420,6 +436,13 @@ fn assemble(
         dissipated,
         event,
     }
+}
+
+/// Whether a magnitude whose square is `mag2` is above `cap` (|v| > cap without the square
+/// root; any magnitude is above a negative cap).
+#[inline]
+fn exceeds(mag2: Real, cap: Real) -> bool {
+    cap < 0.0 || mag2 > cap * cap
 }
 
 /// `v` (of magnitude `mag`) scaled to magnitude `to`.

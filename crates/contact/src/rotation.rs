@@ -5,7 +5,7 @@
 //! is exact (Rodrigues) and preserves the magnitude.
 
 use flexdem_geom::{Real, Vec3};
-use nalgebra::UnitQuaternion;
+use nalgebra::{Quaternion, UnitQuaternion};
 
 /// Rotates `v` by `angle` about the unit `axis` (Rodrigues):
 /// v' = v cosψ + (a×v) sinψ + a(a·v)(1 − cosψ).
@@ -35,13 +35,49 @@ pub fn sin_one_minus_cos(angle: Real) -> (Real, Real) {
     }
 }
 
-/// atan(x) for x ≥ 0: the series x − x³/3 + x⁵/5 − x⁷/7 + x⁹/9 for x < 0.03 (first omitted term
-/// x¹¹/11 below 6e-17 relative), else libm's `atan`.
+/// Below this squared angle (rad², an angle of 1e-2), [`turn_quaternion`] sums series.
+const TURN_SERIES_BELOW2: Real = 1e-4;
+
+/// The unit quaternion of a turn by the rotation vector θ (the angle |θ| about θ/|θ|):
+/// (cos(|θ|/2), θ·sin(|θ|/2)/|θ|). For |θ| < 1e-2, a particle's usual turn in one step, from
+/// |θ|² by the series cos(|θ|/2) = 1 − |θ|²/8 + |θ|⁴/384 − |θ|⁶/46080 and
+/// sin(|θ|/2)/|θ| = ½(1 − |θ|²/24 + |θ|⁴/1920 − |θ|⁶/322560) (first omitted terms below 1e-22):
+/// no square root and no `sin_cos`; else nalgebra's `from_scaled_axis`.
 #[inline]
+pub fn turn_quaternion(turn: Vec3) -> UnitQuaternion<Real> {
+    let t2 = turn.norm_squared();
+    if t2 < TURN_SERIES_BELOW2 {
+        let c = 1.0 - t2 / 8.0 * (1.0 - t2 / 48.0 * (1.0 - t2 / 120.0));
+        let s = 0.5 * (1.0 - t2 / 24.0 * (1.0 - t2 / 80.0 * (1.0 - t2 / 168.0)));
+        UnitQuaternion::new_unchecked(Quaternion::new(c, turn.x * s, turn.y * s, turn.z * s))
+    } else {
+        UnitQuaternion::from_scaled_axis(turn)
+    }
+}
+
+/// `q` scaled back to unit norm (one square root and one division; nalgebra's `renormalize`
+/// divides each of the four components).
+#[inline]
+pub fn renormalized(q: UnitQuaternion<Real>) -> UnitQuaternion<Real> {
+    let q = q.into_inner();
+    UnitQuaternion::new_unchecked(q * (1.0 / q.norm()))
+}
+
+/// Below this x, atan(x)/x is summed as a series: the first omitted term, x¹⁰/11, is below
+/// 6e-17 relative there.
+const ATAN_SERIES_BELOW: Real = 0.03;
+
+/// atan(x)/x from y = x² for x < [`ATAN_SERIES_BELOW`]: 1 − y/3 + y²/5 − y³/7 + y⁴/9.
+#[inline]
+fn atan_over_x_series(y: Real) -> Real {
+    1.0 + y * (-1.0 / 3.0 + y * (1.0 / 5.0 + y * (-1.0 / 7.0 + y * (1.0 / 9.0))))
+}
+
+/// atan(x) for x ≥ 0: x·[`atan_over_x_series`] below 0.03, else libm's `atan`.
+#[cfg(test)]
 fn atan_non_negative(x: Real) -> Real {
-    if x < 0.03 {
-        let y = x * x;
-        x * (1.0 + y * (-1.0 / 3.0 + y * (1.0 / 5.0 + y * (-1.0 / 7.0 + y * (1.0 / 9.0)))))
+    if x < ATAN_SERIES_BELOW {
+        x * atan_over_x_series(x * x)
     } else {
         x.atan()
     }
@@ -66,12 +102,13 @@ pub fn rotate_between(v: Vec3, a: Vec3, b: Vec3) -> Option<Vec3> {
 /// `n_old` onto that of `n_new` (eq 2, "rotate onto the new tangent plane"): the minimal rotation
 /// taking `n_old` to `n_new`, then a twist of `twist_angle` (= spin·dt) about `n_new`; the
 /// round-off normal component is then removed and the magnitude restored, so that |v| does not
-/// drift over millions of steps. When the normal
-/// flipped (opposite normals) the history has no meaning and zero is returned.
+/// drift over millions of steps (by the factor √(|v|²/|t|²): one square root and one
+/// division). When the normal flipped (opposite normals) the history has no meaning and zero
+/// is returned.
 #[inline]
 pub fn transport_tangent(v: Vec3, n_old: Vec3, n_new: Vec3, twist_angle: Real) -> Vec3 {
-    let mag = v.norm();
-    if mag == 0.0 {
+    let mag2 = v.norm_squared();
+    if mag2 == 0.0 {
         return v;
     }
     let Some(swung) = rotate_between(v, n_old, n_new) else {
@@ -79,9 +116,9 @@ pub fn transport_tangent(v: Vec3, n_old: Vec3, n_new: Vec3, twist_angle: Real) -
     };
     let t = if twist_angle == 0.0 { swung } else { rotate_about_axis(swung, n_new, twist_angle) };
     let t = t - n_new * n_new.dot(&t);
-    let tm = t.norm();
-    if tm > 0.0 {
-        t * (mag / tm)
+    let t2 = t.norm_squared();
+    if t2 > 0.0 {
+        t * (mag2 / t2).sqrt()
     } else {
         t
     }
@@ -90,20 +127,26 @@ pub fn transport_tangent(v: Vec3, n_old: Vec3, n_new: Vec3, twist_angle: Real) -
 /// Rotation vector θ = angle·axis of a unit quaternion, with the angle in [0, π] (the
 /// representative of (−π, π] with a non-negative angle), computed as
 /// 2·atan2(|v|, |w|)·sign(w)·v/|v| so that small angles keep full relative precision
-/// (nalgebra's `scaled_axis` goes through `acos` and loses it).
+/// (nalgebra's `scaled_axis` goes through `acos` and loses it). A link's relative rotation is
+/// usually small (|v| < 0.03|w|): there the factor is 2·sign(w)/|w|·atan(x)/x with x = |v|/|w|,
+/// by its series in x², with one division and no square root.
 #[inline]
 pub fn rotation_vector(q: &UnitQuaternion<Real>) -> Vec3 {
     let w = q.w;
     let v = q.imag();
-    let s = v.norm();
-    if s == 0.0 {
+    let s2 = v.norm_squared();
+    if s2 == 0.0 {
         return Vec3::zeros();
     }
-    // 2·atan2(s, |w|); the relative rotation of a link is usually small, where the series
-    // is exact to round-off
-    let angle =
-        if s < w.abs() { 2.0 * atan_non_negative(s / w.abs()) } else { 2.0 * s.atan2(w.abs()) };
-    v * (angle.copysign(w) / s)
+    let aw = w.abs();
+    let limit = ATAN_SERIES_BELOW * aw;
+    if s2 < limit * limit {
+        let inv_w = 1.0 / aw;
+        let y = s2 * inv_w * inv_w;
+        return v * (2.0 * inv_w * atan_over_x_series(y)).copysign(w);
+    }
+    let s = s2.sqrt();
+    v * ((2.0 * s.atan2(aw)).copysign(w) / s)
 }
 
 #[cfg(test)]
@@ -133,6 +176,22 @@ mod tests {
             }
         }
         assert!(worst.0 < 4e-16 && worst.1 < 4e-16, "worst relative errors {worst:?}");
+    }
+
+    #[test]
+    fn turn_quaternion_matches_nalgebra_across_the_switch() {
+        let axis = Vec3::new(0.3, -0.5, 0.8).normalize();
+        for &ang in &[0.0, 1e-9, 1e-5, 3e-3, 9.99e-3, 1.001e-2, 0.3, 2.0] {
+            let q = turn_quaternion(axis * ang);
+            let r = UnitQuaternion::from_scaled_axis(axis * ang);
+            assert!((q.into_inner() - r.into_inner()).norm() < 3e-16, "{ang}");
+            assert!((q.into_inner().norm() - 1.0).abs() < 3e-16, "{ang}");
+        }
+        let q = UnitQuaternion::new_unchecked(Quaternion::new(1.0, 2.0, -2.0, 4.0));
+        assert!((renormalized(q).into_inner().norm() - 1.0).abs() < 1e-15);
+        assert!(
+            (renormalized(q).into_inner() - Quaternion::new(0.2, 0.4, -0.4, 0.8)).norm() < 1e-15
+        );
     }
 
     #[test]
@@ -166,7 +225,7 @@ mod tests {
     #[test]
     fn rotation_vector_small_and_large_angles() {
         let axis = Vec3::new(0.3, -0.5, 0.8).normalize();
-        for &ang in &[1e-12, 1e-7, 1e-3, 1.0, 3.0, PI - 1e-9] {
+        for &ang in &[1e-12, 1e-7, 1e-3, 0.0599, 0.06, 0.0601, 1.0, 3.0, PI - 1e-9] {
             let q = UnitQuaternion::from_scaled_axis(axis * ang);
             let th = rotation_vector(&q);
             assert!((th - axis * ang).norm() <= 1e-15 * ang.max(1.0) + 1e-12 * ang, "{ang}");

@@ -209,11 +209,14 @@ impl ContactPipeline {
             // (free spheres and walls only: no hull is looked at)
             self.scratch.hulls.clear();
         } else {
-            elements
-                .par_iter()
+            // written in place: a collect copies each 136-byte hull through `memcpy`
+            self.scratch.hulls.resize(elements.len(), unused);
+            self.scratch
+                .hulls
+                .par_iter_mut()
+                .zip(elements.par_iter())
                 .enumerate()
-                .map(|(i, &e)| if paired(i) { hull(model, e) } else { unused })
-                .collect_into_vec(&mut self.scratch.hulls);
+                .for_each(|(i, (h, &e))| *h = if paired(i) { hull(model, e) } else { unused });
         }
         let hulls = &self.scratch.hulls;
         collider

@@ -61,17 +61,17 @@ pub(crate) fn describe(state: &State) -> String {
         )),
         _ => parts.push("No contact holds elastic energy".into()),
     }
-    let link = (0..state.links.forces.len())
+    let link = (0..state.links.loads.len())
         .max_by(|&a, &b| {
-            state.links.forces[a].elastic_energy.total_cmp(&state.links.forces[b].elastic_energy)
+            state.links.loads[a].elastic_energy.total_cmp(&state.links.loads[b].elastic_energy)
         })
-        .filter(|&l| state.links.forces[l].elastic_energy > 0.0);
+        .filter(|&l| state.links.loads[l].elastic_energy > 0.0);
     if let Some(l) = link {
         let [a, b] = state.links.nodes[l];
         parts.push(format!(
             "the link holding the most ({:.3e} J) is connection {l} of {}, between nodes {a} \
              and {b}",
-            state.links.forces[l].elastic_energy,
+            state.links.loads[l].elastic_energy,
             structure_name(model, model.connections[l].structure)
         ));
     }

@@ -35,7 +35,7 @@ pub use contact_list::Contacts;
 pub use energy::{Energy, EnergyAccount, EnergyWatch, PendingWork};
 pub use error::SimulationError;
 pub use integrator::{kinetic_energy, leapfrog_step, Leapfrog, StepWork};
-pub use links::{LinkEvents, LinkUpdate, Links};
+pub use links::{LinkEvents, LinkLoad, LinkUpdate, Links};
 pub use measures::{
     deviator_stress, love_weber_stress, mean_stress, membrane_sample_volume, normal_force,
     solid_fraction, wall_gap, wall_normal_stress,

@@ -3,8 +3,7 @@
 //! order so that the result does not depend on the number of threads.
 
 use flexdem_contact::{
-    update_link, LinkEvent, LinkForces, LinkKinematics, LinkKinematicsMode, LinkParams, LinkState,
-    LinkStatus,
+    update_link, LinkEvent, LinkKinematics, LinkKinematicsMode, LinkParams, LinkState, LinkStatus,
 };
 use flexdem_elements::{Model, Particles};
 use flexdem_geom::{Real, Vec3};
@@ -25,6 +24,24 @@ pub struct LinkUpdate {
 /// Links per parallel chunk.
 const CHUNK: usize = 512;
 
+/// What the force assembly, the energy watch and the output read of a link's last update
+/// (88 bytes; the full `LinkForces` of `update_link` is 216). The loads on the nodes are
+/// F₁ = −F₂, τ₁ = τ_lever − M, τ₂ = τ_lever + M; the shear force is the state's
+/// (`LinkState::shear_force`), the twisting moment (M·n)n and the bending moment the rest.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct LinkLoad {
+    /// Force on node 2, Fn·n + Fs (N).
+    pub force_on_2: Vec3,
+    /// The shear force's torque about each node, −(L/2) n × Fs (N·m; the same on both).
+    pub lever_torque: Vec3,
+    /// Moment on node 2, Mt + Mb (N·m).
+    pub moment_on_2: Vec3,
+    /// Normal force Fn (N, compression positive).
+    pub normal_force: Real,
+    /// Elastic energy stored after the update (J).
+    pub elastic_energy: Real,
+}
+
 /// Every beam link: constants, state, and the forces of the last step.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct Links {
@@ -34,9 +51,9 @@ pub struct Links {
     pub params: Vec<LinkParams>,
     /// State carried from step to step (shear force, reference orientations, status).
     pub state: Vec<LinkState>,
-    /// Forces and torques of the last update.
+    /// Loads of the last update.
     #[serde(skip)]
-    pub forces: Vec<LinkForces>,
+    pub loads: Vec<LinkLoad>,
     /// For each node, the offsets into `node_loads` (CSR).
     node_offsets: Vec<u32>,
     /// For each node, the loads it receives: `2·link + side`.
@@ -64,7 +81,7 @@ impl Links {
             nodes: Vec::with_capacity(model.connections.len()),
             params: Vec::with_capacity(model.connections.len()),
             state: Vec::with_capacity(model.connections.len()),
-            forces: Vec::new(),
+            loads: Vec::new(),
             node_offsets: Vec::new(),
             node_loads: Vec::new(),
             chunk_sums: Vec::new(),
@@ -76,7 +93,7 @@ impl Links {
             links.params.push(LinkParams::from_material(material, c.radius, c.rest_length, mode));
             links.state.push(LinkState::new(p.pos[a], p.pos[b], p.ori[a], p.ori[b]));
         }
-        links.forces = vec![LinkForces::default(); links.nodes.len()];
+        links.loads = vec![LinkLoad::default(); links.nodes.len()];
         links.index_nodes(p.len());
         links
     }
@@ -122,7 +139,7 @@ impl Links {
             nodes: self.nodes.clone(),
             params: Vec::new(),
             state: Vec::new(),
-            forces: Vec::new(),
+            loads: Vec::new(),
             node_offsets: Vec::new(),
             node_loads: Vec::new(),
             chunk_sums: Vec::new(),
@@ -150,17 +167,17 @@ impl Links {
     /// breakage events and energy sums (summed per chunk of links, then over the chunks in
     /// order: independent of the thread count).
     pub fn update(&mut self, p: &Particles, dt: Real) -> LinkUpdate {
-        if self.forces.len() != self.nodes.len() {
-            self.forces = vec![LinkForces::default(); self.nodes.len()];
+        if self.loads.len() != self.nodes.len() {
+            self.loads = vec![LinkLoad::default(); self.nodes.len()];
         }
         (
             self.nodes.par_chunks(CHUNK),
             self.params.par_chunks(CHUNK),
             self.state.par_chunks_mut(CHUNK),
-            self.forces.par_chunks_mut(CHUNK),
+            self.loads.par_chunks_mut(CHUNK),
         )
             .into_par_iter()
-            .map(|(nodes, params, state, forces)| {
+            .map(|(nodes, params, state, loads)| {
                 let mut sums = LinkUpdate::default();
                 for k in 0..nodes.len() {
                     let [a, b] = nodes[k].map(|n| n as usize);
@@ -182,7 +199,13 @@ impl Links {
                     }
                     sums.elastic_energy += f.elastic_energy;
                     sums.dissipated += state[k].dissipated.total();
-                    forces[k] = f;
+                    loads[k] = LinkLoad {
+                        force_on_2: f.force_on_2,
+                        lever_torque: f.lever_torque,
+                        moment_on_2: f.twist_moment + f.bending_moment,
+                        normal_force: f.normal_force,
+                        elastic_energy: f.elastic_energy,
+                    };
                 }
                 sums
             })
@@ -208,13 +231,13 @@ impl Links {
             .for_each(|(i, (f, t))| {
                 let (s, e) = (self.node_offsets[i] as usize, self.node_offsets[i + 1] as usize);
                 for &code in &self.node_loads[s..e] {
-                    let lf = &self.forces[(code / 2) as usize];
+                    let l = &self.loads[(code / 2) as usize];
                     if code % 2 == 0 {
-                        *f += lf.force_on_1;
-                        *t += lf.torque_on_1;
+                        *f -= l.force_on_2;
+                        *t += l.lever_torque - l.moment_on_2;
                     } else {
-                        *f += lf.force_on_2;
-                        *t += lf.torque_on_2;
+                        *f += l.force_on_2;
+                        *t += l.lever_torque + l.moment_on_2;
                     }
                 }
             });

@@ -36,6 +36,7 @@ impl Hull {
     }
 
     /// The hull of the first `count` of `points` grown by `radius`.
+    #[inline]
     pub fn new(points: [Vec3; 3], count: usize, radius: Real) -> Hull {
         let centroid = points[..count].iter().sum::<Vec3>() / count as Real;
         let normal = if count == 3 {
@@ -49,6 +50,7 @@ impl Hull {
 }
 
 /// The hull of element `e` of `model`.
+#[inline]
 pub fn hull(model: &Model, e: Element) -> Hull {
     let p = &model.particles.pos;
     match e {

@@ -70,7 +70,7 @@ impl Simulation {
 
     /// A simulation of `state` with a fresh pipeline (no checks: see `new` and `from_state`).
     fn assemble(mut state: State) -> Self {
-        state.links.forces = vec![Default::default(); state.links.len()];
+        state.links.loads = vec![Default::default(); state.links.len()];
         let pipeline = Pipeline::new(&state);
         Simulation { state, pipeline }
     }

@@ -102,7 +102,7 @@ pub fn connections_polydata(sim: &Simulation) -> PolyData {
             Some(LinkStatus::Broken) => 2,
         })
         .collect();
-    let force = |i: usize| links.forces.get(i);
+    let force = |i: usize| links.loads.get(i);
     PolyData {
         points,
         cell_kind: CellKind::Lines,
@@ -117,7 +117,13 @@ pub fn connections_polydata(sim: &Simulation) -> PolyData {
             ),
             DataArray::vectors(
                 "shear_force",
-                (0..connections.len()).map(|i| force(i).map_or([0.0; 3], |f| xyz(&f.shear_force))),
+                (0..connections.len()).map(|i| {
+                    // the shear force of the last update is the state's (zero before a step)
+                    match (force(i), links.state.get(i)) {
+                        (Some(_), Some(s)) => xyz(&s.shear_force),
+                        _ => [0.0; 3],
+                    }
+                }),
             ),
             DataArray::flags("broken", status.iter().map(|&s| u8::from(s == 2)).collect()),
             DataArray::integers("status", status),

@@ -71,7 +71,7 @@ fn snapshot(sim: &Simulation) -> Snapshot {
         pos: pos.clone(),
         vel: sim.model().particles.vel.clone(),
         force: sim.forces().to_vec(),
-        axial: sim.links().forces.iter().map(|f| f.normal_force).collect(),
+        axial: sim.links().loads.iter().map(|f| f.normal_force).collect(),
         contacts,
     }
 }

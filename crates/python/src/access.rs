@@ -152,10 +152,10 @@ pub(crate) fn links(sim: &Simulation) -> LinkTable {
             .collect(),
         ..LinkTable::default()
     };
-    if links.forces.len() == count {
-        for f in &links.forces {
+    if links.loads.len() == count {
+        for (f, s) in links.loads.iter().zip(&links.state) {
             t.normal_force.push(f.normal_force);
-            t.shear_force.extend([f.shear_force.x, f.shear_force.y, f.shear_force.z]);
+            t.shear_force.extend([s.shear_force.x, s.shear_force.y, s.shear_force.z]);
             t.force.extend([f.force_on_2.x, f.force_on_2.y, f.force_on_2.z]);
         }
     } else {
