@@ -29,6 +29,7 @@
 
 use crate::broad_phase::BroadPhase;
 use crate::prefilter::hull;
+use crate::MIN_PARALLEL_CHEAP;
 use flexdem_elements::touching::Element;
 use flexdem_elements::{Model, ParticleKind};
 use flexdem_geom::{aabb_sphere, aabb_swept_segment, aabb_swept_triangle, Aabb, Real, Vec3};
@@ -169,6 +170,7 @@ impl Collider {
             .any(|(w, r)| (w.point - r).norm_squared() > wall_limit)
             || (0..p.len())
                 .into_par_iter()
+                .with_min_len(MIN_PARALLEL_CHEAP)
                 .any(|i| (p.pos[i] - self.reference[i]).norm_squared() > limits[i] * limits[i])
     }
 

@@ -14,6 +14,7 @@ use crate::contact_list::Contacts;
 use crate::dashpots::{dashpot_power, shear_exit};
 use crate::neighbours::{merged, PairScratch, Pick, Sink};
 use crate::prefilter::{hull, proven_apart, Hull};
+use crate::{MIN_PARALLEL_CHEAP, MIN_PARALLEL_COSTLY};
 use flexdem_contact::{update_frictional_contact, ContactDamping};
 use flexdem_elements::pairs::{self, Candidate, ConnectionRef, PFacetRef, SphereRef};
 use flexdem_elements::touching::{dominates, Element, ElementCandidate, Topology};
@@ -216,12 +217,14 @@ impl ContactPipeline {
                 .par_iter_mut()
                 .zip(elements.par_iter())
                 .enumerate()
+                .with_min_len(MIN_PARALLEL_CHEAP)
                 .for_each(|(i, (h, &e))| *h = if paired(i) { hull(model, e) } else { unused });
         }
         let hulls = &self.scratch.hulls;
         collider
             .pairs
             .par_iter()
+            .with_min_len(MIN_PARALLEL_CHEAP)
             .map(|&(i, j)| !proven_apart(&hulls[i as usize], &hulls[j as usize]))
             .collect_into_vec(&mut self.scratch.maybe);
         let near = &mut self.scratch.near;
@@ -230,6 +233,7 @@ impl ContactPipeline {
             collider.pairs.iter().zip(&self.scratch.maybe).filter(|(_, &m)| m).map(|(&p, _)| p),
         );
         near.par_iter()
+            .with_min_len(MIN_PARALLEL_COSTLY)
             .map(|&(i, j)| {
                 let (a, b) = (elements[i as usize], elements[j as usize]);
                 let c = candidate(model, a, b);
@@ -263,6 +267,7 @@ impl ContactPipeline {
         let keys = &scratch.keys;
         (0..touching.len())
             .into_par_iter()
+            .with_min_len(MIN_PARALLEL_COSTLY)
             .map(|i| {
                 let ci = &touching[i];
                 let side2 = containing(collider, adj, ci.candidate.site2.feature);
@@ -524,6 +529,7 @@ impl ContactPipeline {
                 .par_iter_mut()
                 .zip(self.loads.par_iter_mut())
                 .zip(self.dashpot_loads.par_iter_mut())
+                .with_min_len(MIN_PARALLEL_COSTLY)
                 .for_each(|((c, loads), dashpot)| {
                     let (vs1, vs2, g) = update(c, loads);
                     let f = c.forces.dashpot_force;
@@ -537,9 +543,14 @@ impl ContactPipeline {
                     dashpot[3..].copy_from_slice(&l2);
                 });
         } else {
-            contacts.list.par_iter_mut().zip(self.loads.par_iter_mut()).for_each(|(c, loads)| {
-                update(c, loads);
-            });
+            contacts
+                .list
+                .par_iter_mut()
+                .zip(self.loads.par_iter_mut())
+                .with_min_len(MIN_PARALLEL_COSTLY)
+                .for_each(|(c, loads)| {
+                    update(c, loads);
+                });
         }
         // in key order, the free spheres' contacts among the others
         let mut add = |l: &NodeLoad| {

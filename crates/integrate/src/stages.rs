@@ -15,7 +15,7 @@ use crate::settings::TimeStep;
 use crate::simulation::Simulation;
 use crate::time_step::{critical_step_from_stiffness, p_wave_time_step, StiffnessSums};
 use crate::timers::Stage;
-use crate::SimulationError;
+use crate::{SimulationError, MIN_PARALLEL_CHEAP};
 use flexdem_elements::{Dofs, Particles};
 use flexdem_geom::{Real, Vec3};
 use rayon::prelude::*;
@@ -466,6 +466,16 @@ impl Simulation {
         let p = &self.state.model.particles;
         let dt = self.state.clock.dt;
         let reach = &self.pipeline.collider.reach;
+        // one cheap pass (no root, no division) flags a step with a non-finite value or a
+        // particle beyond its reach; only then are the culprits sought
+        let dt2 = dt * dt;
+        let flagged = (0..p.len()).into_par_iter().with_min_len(MIN_PARALLEL_CHEAP).any(|i| {
+            let sum = p.pos[i].sum() + p.vel[i].sum() + p.ang_vel[i].sum();
+            !(sum.is_finite() && p.vel[i].norm_squared() * dt2 <= reach[i] * reach[i])
+        });
+        if !flagged {
+            return Ok(());
+        }
         let jump = (0..p.len())
             .into_par_iter()
             .map(|i| (p.vel[i].norm() * dt / reach[i], i))
