@@ -7,7 +7,9 @@
 //! **on body 2** (body 1 gets the opposite). The force on body 2 is F2 = Fn·n + Fs.
 
 use crate::damping::contact_dashpots;
-use crate::energy::{slip_dissipation, slip_energy, spring_energy, Dissipation};
+use crate::energy::{
+    slip_dissipation, slip_energy, spring_energy, spring_energy_squared, Dissipation,
+};
 use crate::material::Material;
 use crate::rotation::transport_tangent;
 use crate::stiffness::{contact_stiffness, friction_coefficient};
@@ -144,6 +146,7 @@ pub struct ContactForces {
 /// The dashpots dissipate `−F_d·v·dt` in the update (`dissipated.viscous`), `F_d` their force
 /// on body 2 as applied (after the clamp). `elastic_energy` is the springs' energy only.
 /// With cn = ct = 0 every result is the one of the purely elastic–frictional law, bit for bit.
+#[inline]
 pub fn update_frictional_contact(
     params: &FrictionalParams,
     state: &mut FrictionalContact,
@@ -171,8 +174,10 @@ pub fn update_frictional_contact(
     let dashpot_t = if damped_t { us_dot * -params.ct } else { Vec3::zeros() };
     let total = if damped_t { trial + dashpot_t } else { trial };
     let limit = (fn_ * params.tan_phi).max(0.0);
-    let total_mag = total.norm();
-    let (fs, spring, sliding, friction) = if total_mag > limit {
+    // |F| > limit from the squares: the root only when it slides
+    let total2 = total.norm_squared();
+    let (fs, spring, sliding, friction) = if total2 > limit * limit {
+        let total_mag = total2.sqrt();
         let fs = if total_mag > 0.0 { total * (limit / total_mag) } else { Vec3::zeros() };
         if damped_t {
             let spring = fs - dashpot_t;
@@ -200,7 +205,7 @@ pub fn update_frictional_contact(
         force_on_2: n * fn_ + fs,
         dashpot_force,
         elastic_energy: spring_energy(spring_n, params.kn)
-            + spring_energy(spring.norm(), params.ks),
+            + spring_energy_squared(spring.norm_squared(), params.ks),
         dissipated,
         sliding,
     }

@@ -287,7 +287,7 @@ fn undamped_reference(
     kin: &ContactKinematics,
     dt: Real,
 ) -> ContactForces {
-    use crate::energy::{slip_dissipation, spring_energy, Dissipation};
+    use crate::energy::{slip_dissipation, spring_energy, spring_energy_squared, Dissipation};
     use crate::rotation::transport_tangent;
     let n = kin.normal;
     let overlap = kin.overlap - state.overlap_offset;
@@ -303,8 +303,9 @@ fn undamped_reference(
     let trial = rotated - us_dot * (params.ks * dt);
     let fn_ = params.kn * overlap;
     let limit = (fn_ * params.tan_phi).max(0.0);
-    let trial_mag = trial.norm();
-    let (fs, sliding, friction) = if trial_mag > limit {
+    let trial2 = trial.norm_squared();
+    let (fs, sliding, friction) = if trial2 > limit * limit {
+        let trial_mag = trial2.sqrt();
         let fs = if trial_mag > 0.0 { trial * (limit / trial_mag) } else { Vec3::zeros() };
         (fs, true, slip_dissipation(&rotated, &trial, &fs, params.ks))
     } else {
@@ -320,7 +321,8 @@ fn undamped_reference(
         shear_force: fs,
         force_on_2: n * fn_ + fs,
         dashpot_force: Vec3::zeros(),
-        elastic_energy: spring_energy(fn_, params.kn) + spring_energy(fs.norm(), params.ks),
+        elastic_energy: spring_energy(fn_, params.kn)
+            + spring_energy_squared(fs.norm_squared(), params.ks),
         dissipated,
         sliding,
     }

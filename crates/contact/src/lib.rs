@@ -31,7 +31,10 @@ pub use damping::{
     contact_dashpots, damping_ratio, effective_mass, material_dashpots, restitution_of_ratio,
     Dashpots,
 };
-pub use energy::{cap_dissipation, slip_dissipation, slip_energy, spring_energy, Dissipation};
+pub use energy::{
+    cap_dissipation, slip_dissipation, slip_energy, spring_energy, spring_energy_squared,
+    Dissipation,
+};
 pub use frictional::{
     update_frictional_contact, ContactForces, ContactKinematics, FrictionalContact,
     FrictionalParams,

@@ -26,8 +26,8 @@ const SMALL_ANGLE: Real = 5e-3;
 pub fn sin_one_minus_cos(angle: Real) -> (Real, Real) {
     if angle.abs() < SMALL_ANGLE {
         let a2 = angle * angle;
-        let s = angle * (1.0 - a2 / 6.0 * (1.0 - a2 / 20.0));
-        let omc = 0.5 * a2 * (1.0 - a2 / 12.0 * (1.0 - a2 / 30.0));
+        let s = angle * (1.0 - a2 * (1.0 / 6.0) * (1.0 - a2 * (1.0 / 20.0)));
+        let omc = 0.5 * a2 * (1.0 - a2 * (1.0 / 12.0) * (1.0 - a2 * (1.0 / 30.0)));
         (s, omc)
     } else {
         let (s, c) = angle.sin_cos();
@@ -47,8 +47,10 @@ const TURN_SERIES_BELOW2: Real = 1e-4;
 pub fn turn_quaternion(turn: Vec3) -> UnitQuaternion<Real> {
     let t2 = turn.norm_squared();
     if t2 < TURN_SERIES_BELOW2 {
-        let c = 1.0 - t2 / 8.0 * (1.0 - t2 / 48.0 * (1.0 - t2 / 120.0));
-        let s = 0.5 * (1.0 - t2 / 24.0 * (1.0 - t2 / 80.0 * (1.0 - t2 / 168.0)));
+        // (the constants' reciprocals are folded at compile time: multiplications only)
+        let c = 1.0 - t2 * (1.0 / 8.0) * (1.0 - t2 * (1.0 / 48.0) * (1.0 - t2 * (1.0 / 120.0)));
+        let s = 0.5
+            * (1.0 - t2 * (1.0 / 24.0) * (1.0 - t2 * (1.0 / 80.0) * (1.0 - t2 * (1.0 / 168.0))));
         UnitQuaternion::new_unchecked(Quaternion::new(c, turn.x * s, turn.y * s, turn.z * s))
     } else {
         UnitQuaternion::from_scaled_axis(turn)

@@ -495,6 +495,18 @@ fn step_pair(
     mut spare: Option<&mut Vec<Box<PairContact>>>,
 ) -> PairOutcome {
     let mut out = PairOutcome::default();
+    // the hot case, a sphere–sphere contact that goes on: one distance, and no candidate,
+    // sites or owners (the general path below computes the same numbers: `Candidate`'s
+    // overlap is r₁ + r₂ − |c₂ − c₁| too, and it then calls `sphere_geometry` alike)
+    if let ((Feature::Particle(i), Feature::Particle(j)), Some(c)) = (*key, slot.as_deref_mut()) {
+        let p = &model.particles;
+        let (i, j) = (i as usize, j as usize);
+        if let Some(g) = sphere_geometry(p, i, j, &c.state.normal).filter(|g| g.overlap > 0.0) {
+            let nodes = [i as u32, j as u32];
+            out.loads = apply_law(c, &g, nodes, [p.pos[i], p.pos[j]], dt, dashpot);
+            return out;
+        }
+    }
     let touching = match *key {
         (Feature::Particle(i), Feature::Particle(j)) => {
             if slot.is_none() && apart(&model.particles, key) {
@@ -574,32 +586,42 @@ fn step_pair(
                 (g, vs1.center, vs2.center)
             }
         };
-        let f = update_frictional_contact(&c.params, &mut c.state, &law_kinematics(&g), dt);
-        // a particle's site takes the whole force, and its moment about the centre
-        // (`distribute_force` with the weight 1)
-        let on_1 = -f.force_on_2;
-        out.loads = [
-            NodeLoad {
-                node: site1.nodes[0],
-                force: on_1,
-                torque: (g.point - center1).cross(&on_1),
-            },
-            NodeLoad {
-                node: site2.nodes[0],
-                force: f.force_on_2,
-                torque: (g.point - center2).cross(&f.force_on_2),
-            },
-        ];
-        let fd = f.dashpot_force;
-        if let Some(d) = dashpot.filter(|_| fd != Vec3::zeros()) {
-            // the dashpots' force alone, shared the same way: its moments (the forces are
-            // −fd on body 1 and fd on body 2)
-            *d = [(g.point - center1).cross(&(-fd)), (g.point - center2).cross(&fd)];
-        }
-        c.forces = f;
-        c.point = g.point;
+        let nodes = [site1.nodes[0], site2.nodes[0]];
+        out.loads = apply_law(c, &g, nodes, [center1, center2], dt, dashpot);
     }
     out
+}
+
+/// The contact law of a pair in contact, at geometry `g`, and the loads on its two bodies
+/// (`nodes`, with their `centers`): a particle's site takes the whole force, and its moment
+/// about the centre (`distribute_force` with the weight 1). With `dashpot`, the moments of the
+/// dashpots' force alone (the forces are −fd on body 1 and fd on body 2), when they pushed.
+#[inline]
+fn apply_law(
+    c: &mut PairContact,
+    g: &ContactGeometry,
+    nodes: [u32; 2],
+    centers: [Vec3; 2],
+    dt: Real,
+    dashpot: Option<&mut [Vec3; 2]>,
+) -> [NodeLoad; 2] {
+    let f = update_frictional_contact(&c.params, &mut c.state, &law_kinematics(g), dt);
+    let on_1 = -f.force_on_2;
+    let loads = [
+        NodeLoad { node: nodes[0], force: on_1, torque: (g.point - centers[0]).cross(&on_1) },
+        NodeLoad {
+            node: nodes[1],
+            force: f.force_on_2,
+            torque: (g.point - centers[1]).cross(&f.force_on_2),
+        },
+    ];
+    let fd = f.dashpot_force;
+    if let Some(d) = dashpot.filter(|_| fd != Vec3::zeros()) {
+        *d = [(g.point - centers[0]).cross(&(-fd)), (g.point - centers[1]).cross(&fd)];
+    }
+    c.forces = f;
+    c.point = g.point;
+    loads
 }
 
 /// What [`NeighbourList::update_in_order`] hands on: the key of the next touching pair (the
@@ -629,7 +651,7 @@ fn sphere_geometry(
     if !(dist > 1e-14 * scale && d.dot(previous_normal) > 0.0) {
         return None;
     }
-    let normal = d / dist;
+    let normal = d * (1.0 / dist);
     let overlap = r1 + r2 - dist;
     let point = c1 + normal * (r1 - 0.5 * overlap);
     let (w1, w2) = (p.ang_vel[i], p.ang_vel[j]);
