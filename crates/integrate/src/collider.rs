@@ -28,8 +28,8 @@
 //! swept element is at a node).
 
 use crate::broad_phase::BroadPhase;
+use crate::parallel::MIN_PARALLEL_CHEAP;
 use crate::prefilter::hull;
-use crate::MIN_PARALLEL_CHEAP;
 use flexdem_elements::touching::Element;
 use flexdem_elements::{Model, ParticleKind};
 use flexdem_geom::{aabb_sphere, aabb_swept_segment, aabb_swept_triangle, Aabb, Real, Vec3};

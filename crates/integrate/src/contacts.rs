@@ -12,9 +12,11 @@ use crate::contact::{
 };
 use crate::contact_list::Contacts;
 use crate::dashpots::{dashpot_power, shear_exit};
-use crate::neighbours::{merged, PairScratch, Pick, Sink};
+use crate::gather::{fits_codes, LoadIndex};
+use crate::neighbours::{merged, Pick, Sink};
+use crate::pair_passes::PairScratch;
+use crate::parallel::{MIN_PARALLEL_CHEAP, MIN_PARALLEL_COSTLY};
 use crate::prefilter::{hull, proven_apart, Hull};
-use crate::{MIN_PARALLEL_CHEAP, MIN_PARALLEL_COSTLY};
 use flexdem_contact::{update_frictional_contact, ContactDamping};
 use flexdem_elements::pairs::{self, Candidate, ConnectionRef, PFacetRef, SphereRef};
 use flexdem_elements::touching::{dominates, Element, ElementCandidate, Topology};
@@ -42,6 +44,8 @@ pub(crate) struct ContactPipeline {
     dashpot_loads: Vec<[NodeLoad; 6]>,
     /// Buffers reused from step to step, so that detection does not allocate once warm.
     scratch: Scratch,
+    /// Where each particle's loads are, for their parallel sum (`gather.rs`).
+    load_index: LoadIndex,
     connection_nodes: Vec<[u32; 2]>,
     pfacet_nodes: Vec<[u32; 3]>,
     pfacet_connections: Vec<[u32; 3]>,
@@ -585,6 +589,21 @@ impl ContactPipeline {
             return report;
         }
         let report = contacts.pairs.update(model, dt, self.damped, &mut self.pairs, ended);
+        if fits_codes(contacts.list.len(), contacts.pairs.keys().len()) {
+            // each particle's loads in key order, in parallel over the particles (`gather.rs`)
+            let index = &mut self.load_index;
+            index.index_pairs(&contacts.pairs, p.len());
+            index.index_general(&contacts.list, &self.loads, p.len());
+            index.add_loads(
+                force,
+                torque,
+                &contacts.list,
+                &self.loads,
+                &contacts.pairs,
+                &self.pairs,
+            );
+            return report;
+        }
         // the touching pairs' loads come in the order `merged` picks them
         let mut pair_loads = contacts.pairs.touching_loads(&self.pairs);
         for pick in merged(&contacts.list, &contacts.pairs) {

@@ -14,17 +14,16 @@
 //! depend on which pipeline a contact went through, nor on the thread count.
 
 use crate::contact::{
-    birth_jump, geometry_of, law_kinematics, new_contact, sphere_touching, wall_touching,
-    BirthReport, Contact, SPHERE_OWNER, WALL_OWNER,
+    birth_jump, geometry_of, law_kinematics, new_contact, sphere_touching, wall_touching, Contact,
+    SPHERE_OWNER, WALL_OWNER,
 };
-use crate::dashpots::{pair_dashpot_power, shear_exit};
+use crate::dashpots::shear_exit;
 use flexdem_contact::{
     update_frictional_contact, ContactForces, FrictionalContact, FrictionalParams,
 };
 use flexdem_elements::virtual_sphere::{ContactGeometry, Feature, Kinematics, NodeLoad, Site};
 use flexdem_elements::{Model, Particles};
 use flexdem_geom::{Real, Vec3};
-use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 /// The key of a contact: its two features (body 1's, body 2's).
@@ -51,20 +50,32 @@ pub struct PairContact {
 #[derive(Clone, Debug, Default, Serialize, Deserialize)]
 #[serde(from = "Vec<(ContactKey, PairContact)>", into = "Vec<(ContactKey, PairContact)>")]
 pub struct NeighbourList {
-    keys: Vec<ContactKey>,
+    pub(crate) keys: Vec<ContactKey>,
     /// One per key: its contact while it touches, boxed (most candidates do not touch, and a
     /// pair that does not costs the pointer only: 8 bytes per candidate instead of a
     /// contact's size, and a rebuild moves pointers).
-    contacts: Vec<Option<Box<PairContact>>>,
+    pub(crate) contacts: Vec<Option<Box<PairContact>>>,
     /// `energy_sums` as the last update in one pass found them (its pass visits every
     /// contact anyway); `None` when not known (after a parallel update, a clear, a load).
-    sums: Option<(Real, Real)>,
+    pub(crate) sums: Option<(Real, Real)>,
+    /// Which set of candidates this is: a number no other set of this process had, changed
+    /// when the candidates change (a rebuild, a clear, a load), for the indexes built on them
+    /// (`gather::LoadIndex`).
+    generation: u64,
+}
+
+/// The source of [`NeighbourList`] generations.
+static GENERATIONS: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(1);
+
+/// A generation no set of candidates had before.
+fn new_generation() -> u64 {
+    GENERATIONS.fetch_add(1, std::sync::atomic::Ordering::Relaxed)
 }
 
 impl From<Vec<(ContactKey, PairContact)>> for NeighbourList {
     fn from(touching: Vec<(ContactKey, PairContact)>) -> Self {
         let (keys, contacts) = touching.into_iter().map(|(k, c)| (k, Some(Box::new(c)))).unzip();
-        NeighbourList { keys, contacts, sums: None }
+        NeighbourList { keys, contacts, sums: None, generation: new_generation() }
     }
 }
 
@@ -84,12 +95,12 @@ impl PartialEq for NeighbourList {
 /// birth or end moved the energy balance by.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct PairOutcome {
-    loads: [NodeLoad; 2],
-    born_energy: Real,
-    released: Real,
-    ended_dissipation: Real,
-    born_deep: bool,
-    fresh: bool,
+    pub(crate) loads: [NodeLoad; 2],
+    pub(crate) born_energy: Real,
+    pub(crate) released: Real,
+    pub(crate) ended_dissipation: Real,
+    pub(crate) born_deep: bool,
+    pub(crate) fresh: bool,
 }
 
 impl Default for PairOutcome {
@@ -104,55 +115,6 @@ impl Default for PairOutcome {
             fresh: false,
         }
     }
-}
-
-/// A pair whose dashpots pushed at the last update: its index, the dashpots' force on body
-/// 2, its moments about the two centres, and the law's own count of their dissipation.
-#[derive(Clone, Copy, Debug)]
-struct Pushed {
-    index: u32,
-    force: Vec3,
-    moments: [Vec3; 2],
-    viscous: Real,
-}
-
-impl Pushed {
-    /// The record of pair `index` if its dashpots pushed (`moments` as `step_pair` wrote them).
-    fn of(index: usize, c: &PairContact, moments: &[Vec3; 2]) -> Option<Pushed> {
-        let force = c.forces.dashpot_force;
-        (force != Vec3::zeros()).then_some(Pushed {
-            index: index as u32,
-            force,
-            moments: *moments,
-            viscous: c.forces.dissipated.viscous,
-        })
-    }
-}
-
-/// Candidate pairs per chunk of a parallel update (fixed: the work is split the same way
-/// whatever the number of threads, and the outcomes are read in pair order).
-const PAIR_CHUNK: usize = 4096;
-
-/// Buffers of [`NeighbourList::update`] (nothing here is saved).
-#[derive(Clone, Debug, Default)]
-pub(crate) struct PairScratch {
-    /// The outcomes of the last (parallel) update, per chunk of [`PAIR_CHUNK`] candidates:
-    /// those of the pairs it stepped (not the far-apart ones), with their index, in order.
-    chunks: Vec<Vec<(u32, PairOutcome)>>,
-    /// Indices of the pairs that started touching at the last update.
-    pub(crate) fresh: Vec<usize>,
-    /// With dashpots and more than one thread (`update`'s `damped`), one per candidate pair:
-    /// the moments of its dashpots' force alone about the two bodies' centres (body 1's,
-    /// body 2's), for their power after the kick (`dashpots::pair_dashpot_power`); written
-    /// only for the touching pairs whose dashpots pushed (the others are never read).
-    pub(crate) dashpot: Vec<[Vec3; 2]>,
-    /// The touching pairs whose dashpots pushed at the last update, in key order: what
-    /// `dashpot_dissipation` needs, gathered while each contact was at hand.
-    pushed: Vec<Pushed>,
-    /// The boxes of contacts that ended, for the next births (one thread): a birth takes one
-    /// instead of allocating.
-    #[allow(clippy::vec_box, reason = "the boxes are what is kept, to serve again")]
-    spare: Vec<Box<PairContact>>,
 }
 
 /// The sites of the contact of `key` (a free sphere's radius from the model).
@@ -225,26 +187,17 @@ impl NeighbourList {
         self.keys.clear();
         self.contacts.clear();
         self.sums = None;
+        self.generation = new_generation();
     }
 
-    /// Elastic energy stored at the last update.
-    pub fn elastic_energy(&self) -> Real {
-        self.touching().map(|(_, c)| c.forces.elastic_energy).sum()
+    /// The keys of the candidate pairs, sorted.
+    pub(crate) fn keys(&self) -> &[ContactKey] {
+        &self.keys
     }
 
-    /// Friction dissipated by the touching pairs over their lives.
-    pub fn dissipated(&self) -> Real {
-        self.touching().map(|(_, c)| c.state.dissipated.friction).sum()
-    }
-
-    /// `(elastic_energy(), dissipated())` in one pass over the contacts (the same sums, in
-    /// the same order, from −0 as `Iterator::sum`).
-    pub(crate) fn energy_sums(&self) -> (Real, Real) {
-        self.sums.unwrap_or_else(|| {
-            self.touching().fold((-0.0, -0.0), |(e, f), (_, c)| {
-                (e + c.forces.elastic_energy, f + c.state.dissipated.friction)
-            })
-        })
+    /// This set of candidates' generation (see the field).
+    pub(crate) fn generation(&self) -> u64 {
+        self.generation
     }
 
     /// The index of the first candidate with a wall (the keys sort walls last).
@@ -269,6 +222,7 @@ impl NeighbourList {
     /// carried over by key. A touching pair missing from the new candidates (which the
     /// collider's margins exclude) is kept, so that its end is accounted for.
     pub(crate) fn rebuild(&mut self, spheres: &[(u32, u32)], walls: &[(u32, u32)]) {
+        self.generation = new_generation();
         let old_keys = std::mem::take(&mut self.keys);
         let old_contacts = std::mem::take(&mut self.contacts);
         let mut old =
@@ -300,176 +254,13 @@ impl NeighbourList {
             self.contacts.push(c);
         }
     }
-
-    /// One step of every pair (in parallel): whether it touches; a new contact made as the
-    /// general pipeline makes it (`contacts::new_contact`) with its birth accounted for; an
-    /// ended one's friction, elastic and shear energy accounted for; then the contact law
-    /// and the node loads of every touching pair, into `scratch.chunks` (the outcomes of the
-    /// pairs that are not far apart, in order, per chunk), and when `damped` (a contact may
-    /// have dashpots) the moments of the dashpots' force alone into `scratch.dashpot` and
-    /// the records of the pairs whose dashpots pushed. `dt` is the step just done (the
-    /// contact law's and the births' step). Returns what the births and ends moved the
-    /// energy balance by, and the ended pairs' friction in `ended_dissipation`.
-    pub(crate) fn update(
-        &mut self,
-        model: &Model,
-        dt: Real,
-        damped: bool,
-        scratch: &mut PairScratch,
-        ended_dissipation: &mut Real,
-    ) -> BirthReport {
-        let p = &model.particles;
-        let k = Kinematics { pos: &p.pos, vel: &p.vel, ang_vel: &p.ang_vel };
-        self.sums = None;
-        let used = self.keys.len().div_ceil(PAIR_CHUNK);
-        if scratch.chunks.len() < used {
-            scratch.chunks.resize_with(used, Vec::new);
-        }
-        // one chunk: its pairs that are not far apart stepped, their outcomes kept in order
-        let step_chunk = |base: usize,
-                          keys: &[ContactKey],
-                          slots: &mut [Option<Box<PairContact>>],
-                          mut dashpots: Option<&mut [[Vec3; 2]]>,
-                          out: &mut Vec<(u32, PairOutcome)>| {
-            out.clear();
-            for (i, (key, slot)) in keys.iter().zip(slots.iter_mut()).enumerate() {
-                if slot.is_none() && apart(p, key) {
-                    continue;
-                }
-                let d = dashpots.as_mut().map(|d| &mut d[i]);
-                out.push(((base + i) as u32, step_pair(model, &k, key, slot, dt, d, None)));
-            }
-        };
-        let chunks = self
-            .keys
-            .par_chunks(PAIR_CHUNK)
-            .zip(self.contacts.par_chunks_mut(PAIR_CHUNK))
-            .zip(scratch.chunks[..used].par_iter_mut())
-            .enumerate();
-        if damped {
-            scratch.dashpot.resize(self.keys.len(), [Vec3::zeros(); 2]);
-            chunks.zip(scratch.dashpot.par_chunks_mut(PAIR_CHUNK)).for_each(
-                |((c, ((keys, slots), out)), d)| {
-                    step_chunk(c * PAIR_CHUNK, keys, slots, Some(d), out);
-                },
-            );
-        } else {
-            chunks.for_each(|(c, ((keys, slots), out))| {
-                step_chunk(c * PAIR_CHUNK, keys, slots, None, out);
-            });
-        }
-        scratch.pushed.clear();
-        if damped {
-            let moments = &scratch.dashpot;
-            scratch.pushed.extend(
-                self.contacts
-                    .iter()
-                    .enumerate()
-                    .filter_map(|(n, c)| Pushed::of(n, c.as_deref()?, &moments[n])),
-            );
-        }
-        // in pair order (a pair passed over adds nothing: its outcome would be all zeros)
-        let mut report = BirthReport::default();
-        scratch.fresh.clear();
-        for &(n, ref o) in scratch.chunks[..used].iter().flatten() {
-            if o.fresh {
-                scratch.fresh.push(n as usize);
-            }
-            report.born_energy += o.born_energy;
-            report.released += o.released;
-            report.born_deep += u64::from(o.born_deep);
-            *ended_dissipation += o.ended_dissipation;
-        }
-        report
-    }
-
-    /// [`NeighbourList::update`] in one pass on this thread, giving `sink` each touching
-    /// pair's key (`Sink::Before`), then its node loads (`Sink::Load`), in key order: the
-    /// loads are summed as they come (no buffer), with the same results (and, when `damped`,
-    /// the records of the pairs whose dashpots pushed, as `update` keeps them).
-    pub(crate) fn update_in_order(
-        &mut self,
-        model: &Model,
-        dt: Real,
-        damped: bool,
-        scratch: &mut PairScratch,
-        ended_dissipation: &mut Real,
-        mut sink: impl FnMut(Sink<'_>),
-    ) -> BirthReport {
-        let p = &model.particles;
-        let k = Kinematics { pos: &p.pos, vel: &p.vel, ang_vel: &p.ang_vel };
-        let mut report = BirthReport::default();
-        scratch.fresh.clear();
-        scratch.pushed.clear();
-        // the touching pairs' elastic energy and friction after their update, in key order
-        // from −0: `energy_sums` without a second visit
-        let (mut elastic, mut friction) = (-0.0, -0.0);
-        for (n, (key, slot)) in self.keys.iter().zip(self.contacts.iter_mut()).enumerate() {
-            if slot.is_none() && apart(p, key) {
-                // (what step_pair would say at more cost: nothing happened)
-                continue;
-            }
-            let mut moments = [Vec3::zeros(); 2];
-            let dashpot = if damped { Some(&mut moments) } else { None };
-            let o = step_pair(model, &k, key, slot, dt, dashpot, Some(&mut scratch.spare));
-            if o.fresh {
-                scratch.fresh.push(n);
-            }
-            report.born_energy += o.born_energy;
-            report.released += o.released;
-            report.born_deep += u64::from(o.born_deep);
-            *ended_dissipation += o.ended_dissipation;
-            if let Some(c) = slot {
-                if damped {
-                    scratch.pushed.extend(Pushed::of(n, c, &moments));
-                }
-                elastic += c.forces.elastic_energy;
-                friction += c.state.dissipated.friction;
-                sink(Sink::Before(key));
-                let first = usize::from(matches!(key.0, Feature::Wall(_)));
-                o.loads[first..].iter().for_each(|l| sink(Sink::Load(l)));
-            }
-        }
-        self.sums = Some((elastic, friction));
-        report
-    }
-
-    /// The dashpots of the touching pairs at the last update (`update` with `damped`):
-    /// `(Σ dissipated.viscous, Σ power)`, the law's own count and the power of their forces
-    /// with the particles' and walls' current velocities (`dashpots::dashpot_power`; called
-    /// after the kick).
-    pub(crate) fn dashpot_dissipation(&self, scratch: &PairScratch, model: &Model) -> (Real, Real) {
-        let (mut law, mut power) = (0.0, 0.0);
-        for d in &scratch.pushed {
-            law += d.viscous;
-            power += pair_dashpot_power(&self.keys[d.index as usize], &d.force, &d.moments, model);
-        }
-        (law, power)
-    }
-
-    /// The touching pairs after the last (parallel) update, in order: each one's index and
-    /// node loads (body 1's, none for a wall, and body 2's), as `merged` picks them.
-    pub(crate) fn touching_loads<'a>(
-        &'a self,
-        scratch: &'a PairScratch,
-    ) -> impl Iterator<Item = (usize, &'a [NodeLoad])> + 'a {
-        let used = self.keys.len().div_ceil(PAIR_CHUNK);
-        scratch.chunks[..used.min(scratch.chunks.len())]
-            .iter()
-            .flatten()
-            .filter(move |(n, _)| self.contacts[*n as usize].is_some())
-            .map(move |(n, o)| {
-                let wall = matches!(self.keys[*n as usize].0, Feature::Wall(_));
-                (*n as usize, &o.loads[usize::from(wall)..])
-            })
-    }
 }
 
 /// Whether the pair of `key` is two spheres whose centres are farther apart than their radii
 /// with 1e-9 to spare: most candidates do not touch, and this conservative test (the exact
 /// one is `r_i + r_j − |d| > 0`) tells them first. False for a wall's pair.
 #[inline(always)]
-fn apart(p: &Particles, key: &ContactKey) -> bool {
+pub(crate) fn apart(p: &Particles, key: &ContactKey) -> bool {
     match *key {
         (Feature::Particle(i), Feature::Particle(j)) => {
             let (i, j) = (i as usize, j as usize);
@@ -485,7 +276,7 @@ fn apart(p: &Particles, key: &ContactKey) -> bool {
 /// were otherwise); with `spare`, an ended contact's box goes there and a new contact takes
 /// one from there if it can.
 #[allow(clippy::vec_box, reason = "the boxes are what is kept, to serve again")]
-fn step_pair(
+pub(crate) fn step_pair(
     model: &Model,
     k: &Kinematics<'_>,
     key: &ContactKey,

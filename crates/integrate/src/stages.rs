@@ -9,13 +9,14 @@ use crate::energy::PendingWork;
 use crate::integrator::{leapfrog_step, Leapfrog, StepWork};
 use crate::links::LinkUpdate;
 use crate::neighbours::{merged_fresh, Pick};
+use crate::parallel::MIN_PARALLEL_CHEAP;
 use crate::pressure::add_pressure_forces;
 use crate::servo::steer_walls;
 use crate::settings::TimeStep;
 use crate::simulation::Simulation;
 use crate::time_step::{critical_step_from_stiffness, p_wave_time_step, StiffnessSums};
 use crate::timers::Stage;
-use crate::{SimulationError, MIN_PARALLEL_CHEAP};
+use crate::SimulationError;
 use flexdem_elements::{Dofs, Particles};
 use flexdem_geom::{Real, Vec3};
 use rayon::prelude::*;
@@ -139,8 +140,11 @@ impl Simulation {
     /// Returns whether contacts appeared.
     fn contact_stage(&mut self, dt: Real) -> bool {
         let t0 = self.pipeline.timers.start();
-        self.pipeline.force.iter_mut().for_each(|f| *f = Vec3::zeros());
-        self.pipeline.torque.iter_mut().for_each(|t| *t = Vec3::zeros());
+        let zero = |v: &mut Vec<Vec3>| {
+            v.par_iter_mut().with_min_len(8 * MIN_PARALLEL_CHEAP).for_each(|x| *x = Vec3::zeros())
+        };
+        zero(&mut self.pipeline.force);
+        zero(&mut self.pipeline.torque);
         let before = self.state.contacts.len();
         let births = self.pipeline.contacts.detect(
             &mut self.state.contacts,

@@ -1,0 +1,208 @@
+//! The contacts' node loads summed per particle, in parallel over the particles, each
+//! particle's loads in the contacts' key order: the same additions, in the same order, as the
+//! one-thread pass that adds every contact's loads as it goes (`ContactPipeline::apply`), so
+//! that the results do not depend on the number of threads. It replaces a pass over every
+//! contact on one thread after the parallel update, which capped the speed-up of two threads
+//! (issue 14).
+//!
+//! A particle's loads come from two lists, both sorted by key: the general contacts (rebuilt
+//! each step, indexed here each step) and the free spheres' candidate pairs (indexed once per
+//! set of candidates, `NeighbourList::generation`). The two never share a key; each
+//! particle's entries of the two are merged by key.
+
+use crate::contact::Contact;
+use crate::neighbours::{ContactKey, NeighbourList};
+use crate::pair_passes::PairScratch;
+use flexdem_elements::virtual_sphere::{Feature, NodeLoad};
+use flexdem_geom::Vec3;
+use rayon::prelude::*;
+
+/// Particles per parallel task.
+const CHUNK: usize = 1024;
+
+/// Per particle, where its loads are: the candidate pairs it is in and the general contacts'
+/// loads on it, each in key order (two CSR tables). Nothing here is saved.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct LoadIndex {
+    /// The neighbour list generation and particle count the pair table was built for.
+    pairs_built_for: Option<(u64, usize)>,
+    /// Per particle, its range in `pair_entries` (`pair_offsets[i]..pair_offsets[i + 1]`).
+    pair_offsets: Vec<u32>,
+    /// `2·n + side`: candidate pair `n`, the particle being its body 1 (side 0) or body 2.
+    pair_entries: Vec<u32>,
+    /// Per particle, its range in `general_entries`; empty when there is no general contact.
+    general_offsets: Vec<u32>,
+    /// `8·n + slot`: the load `slot` (0–5) of general contact `n`.
+    general_entries: Vec<u32>,
+    /// The counts of the counting sorts (a buffer).
+    count: Vec<u32>,
+}
+
+/// Whether `len` entries fit the `u32` codes of the index (`8·n + slot`, `2·n + side`).
+pub(crate) fn fits_codes(general: usize, pairs: usize) -> bool {
+    general < (u32::MAX / 8) as usize && pairs < (u32::MAX / 2) as usize
+}
+
+impl LoadIndex {
+    /// Indexes the candidate pairs of `pairs` for `particles` particles, unless done already.
+    pub(crate) fn index_pairs(&mut self, pairs: &NeighbourList, particles: usize) {
+        let built_for = Some((pairs.generation(), particles));
+        if self.pairs_built_for == built_for {
+            return;
+        }
+        let keys = pairs.keys();
+        let entries = keys.iter().enumerate().flat_map(|(n, key)| {
+            let side = |f: Feature, s: u32| match f {
+                Feature::Particle(i) => Some((i, 2 * n as u32 + s)),
+                _ => None,
+            };
+            side(key.0, 0).into_iter().chain(side(key.1, 1))
+        });
+        counting_sort(
+            entries,
+            particles,
+            &mut self.count,
+            &mut self.pair_offsets,
+            &mut self.pair_entries,
+        );
+        self.pairs_built_for = built_for;
+    }
+
+    /// Indexes the loads of the general contacts `list` (their `loads`, as `apply` wrote
+    /// them: body 1's first `n1`, body 2's from slot 3) for `particles` particles.
+    pub(crate) fn index_general(
+        &mut self,
+        list: &[Contact],
+        loads: &[[NodeLoad; 6]],
+        particles: usize,
+    ) {
+        if list.is_empty() {
+            self.general_offsets.clear();
+            self.general_entries.clear();
+            return;
+        }
+        let entries = list.iter().zip(loads).enumerate().flat_map(|(n, (c, l))| {
+            let (n1, n2) = (c.site1.node_count(), c.site2.node_count());
+            (0..n1).chain(3..3 + n2).map(move |slot| (l[slot].node, 8 * n as u32 + slot as u32))
+        });
+        counting_sort(
+            entries,
+            particles,
+            &mut self.count,
+            &mut self.general_offsets,
+            &mut self.general_entries,
+        );
+    }
+
+    /// Adds to `force` and `torque` (one entry per particle) the loads of the general
+    /// contacts (`list`, `loads`) and of the touching candidate pairs of `pairs` at its last
+    /// parallel update (`scratch`), each particle's in key order, in parallel over the
+    /// particles. The index must be up to date ([`LoadIndex::index_pairs`],
+    /// [`LoadIndex::index_general`]).
+    pub(crate) fn add_loads(
+        &self,
+        force: &mut [Vec3],
+        torque: &mut [Vec3],
+        list: &[Contact],
+        loads: &[[NodeLoad; 6]],
+        pairs: &NeighbourList,
+        scratch: &PairScratch,
+    ) {
+        let keys = pairs.keys();
+        let general_key = |code: u32| list[(code / 8) as usize].key();
+        let general_load = |code: u32| &loads[(code / 8) as usize][(code % 8) as usize];
+        let pair_key = |code: u32| keys[(code / 2) as usize];
+        let pair_load =
+            |code: u32| pairs.load_of(scratch, (code / 2) as usize, (code % 2) as usize);
+        force.par_chunks_mut(CHUNK).zip(torque.par_chunks_mut(CHUNK)).enumerate().for_each(
+            |(c, (f, t))| {
+                for (k, (f, t)) in f.iter_mut().zip(t).enumerate() {
+                    let i = c * CHUNK + k;
+                    let general = range(&self.general_offsets, &self.general_entries, i);
+                    let paired = range(&self.pair_offsets, &self.pair_entries, i);
+                    let mut add = |l: &NodeLoad| {
+                        *f += l.force;
+                        *t += l.torque;
+                    };
+                    let (mut a, mut b) = (0, 0);
+                    // the two lists merged by key (a pair that does not touch adds nothing)
+                    while a < general.len() || b < paired.len() {
+                        let take_general = match (general.get(a), paired.get(b)) {
+                            (Some(&g), Some(&p)) => key_before(&general_key(g), &pair_key(p)),
+                            (Some(_), None) => true,
+                            _ => false,
+                        };
+                        if take_general {
+                            add(general_load(general[a]));
+                            a += 1;
+                        } else {
+                            if let Some(l) = pair_load(paired[b]) {
+                                add(l);
+                            }
+                            b += 1;
+                        }
+                    }
+                }
+            },
+        );
+    }
+}
+
+#[inline]
+fn key_before(a: &ContactKey, b: &ContactKey) -> bool {
+    a < b
+}
+
+/// Entries of particle `i` in a CSR table (none beyond the table).
+#[inline]
+fn range<'a>(offsets: &[u32], entries: &'a [u32], i: usize) -> &'a [u32] {
+    match (offsets.get(i), offsets.get(i + 1)) {
+        (Some(&s), Some(&e)) => &entries[s as usize..e as usize],
+        _ => &[],
+    }
+}
+
+/// A CSR table of `(particle, code)` items: `offsets` (particles + 1) and `entries`, each
+/// particle's codes in the order the items came (a stable counting sort).
+fn counting_sort(
+    items: impl Iterator<Item = (u32, u32)> + Clone,
+    particles: usize,
+    count: &mut Vec<u32>,
+    offsets: &mut Vec<u32>,
+    entries: &mut Vec<u32>,
+) {
+    count.clear();
+    count.resize(particles + 1, 0);
+    for (i, _) in items.clone() {
+        count[i as usize + 1] += 1;
+    }
+    for i in 0..particles {
+        count[i + 1] += count[i];
+    }
+    offsets.clear();
+    offsets.extend_from_slice(count);
+    entries.clear();
+    entries.resize(count[particles] as usize, 0);
+    for (i, code) in items {
+        let slot = &mut count[i as usize];
+        entries[*slot as usize] = code;
+        *slot += 1;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn counting_sort_keeps_each_particles_order() {
+        let items = [(2u32, 10u32), (0, 11), (2, 12), (1, 13), (0, 14)];
+        let (mut count, mut offsets, mut entries) = (Vec::new(), Vec::new(), Vec::new());
+        counting_sort(items.iter().copied(), 4, &mut count, &mut offsets, &mut entries);
+        assert_eq!(offsets, vec![0, 2, 3, 5, 5]);
+        assert_eq!(entries, vec![11, 14, 13, 10, 12]);
+        assert_eq!(range(&offsets, &entries, 2), &[10, 12]);
+        assert_eq!(range(&offsets, &entries, 3), &[] as &[u32]);
+        assert_eq!(range(&offsets, &entries, 9), &[] as &[u32]);
+    }
+}

@@ -1,0 +1,353 @@
+//! The step of every candidate pair of the neighbour list (`neighbours.rs`): in parallel (`update`, its outcomes
+//! kept per chunk for the loads' sum, `gather.rs`) or in one pass on this thread
+//! (`update_in_order`, the loads handed on as they come). Both sum the step's energy terms
+//! per chunk of [`PAIR_CHUNK`] candidates, in pair order, then over the chunks in order: the
+//! same additions whichever pass ran, so the same bits whatever the number of threads.
+
+use crate::contact::BirthReport;
+use crate::dashpots::pair_dashpot_power;
+use crate::neighbours::{apart, step_pair, NeighbourList, PairContact, PairOutcome, Sink};
+use flexdem_elements::virtual_sphere::{Feature, Kinematics, NodeLoad};
+use flexdem_elements::Model;
+use flexdem_geom::{Real, Vec3};
+use rayon::prelude::*;
+
+/// A pair whose dashpots pushed at the last update: its index, the dashpots' force on body
+/// 2, its moments about the two centres, and the law's own count of their dissipation.
+#[derive(Clone, Copy, Debug)]
+struct Pushed {
+    index: u32,
+    force: Vec3,
+    moments: [Vec3; 2],
+    viscous: Real,
+}
+
+impl Pushed {
+    /// The record of pair `index` if its dashpots pushed (`moments` as `step_pair` wrote them).
+    fn of(index: usize, c: &PairContact, moments: &[Vec3; 2]) -> Option<Pushed> {
+        let force = c.forces.dashpot_force;
+        (force != Vec3::zeros()).then_some(Pushed {
+            index: index as u32,
+            force,
+            moments: *moments,
+            viscous: c.forces.dissipated.viscous,
+        })
+    }
+}
+
+/// Candidate pairs per chunk (fixed: the work is split the same way whatever the number of
+/// threads, and the sums are taken per chunk, then over the chunks in order).
+pub(crate) const PAIR_CHUNK: usize = 4096;
+
+/// What the pairs of one chunk added to the step's sums, each in pair order (from +0 for the
+/// births and ends, from −0 for the touching pairs' energy, as `Iterator::sum`).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct ChunkSums {
+    born_energy: Real,
+    released: Real,
+    born_deep: u64,
+    ended_dissipation: Real,
+    /// Elastic energy of the touching pairs after their update.
+    pub(crate) elastic: Real,
+    /// Friction dissipated by the touching pairs over their lives.
+    pub(crate) friction: Real,
+}
+
+impl Default for ChunkSums {
+    fn default() -> Self {
+        ChunkSums {
+            born_energy: 0.0,
+            released: 0.0,
+            born_deep: 0,
+            ended_dissipation: 0.0,
+            elastic: -0.0,
+            friction: -0.0,
+        }
+    }
+}
+
+impl ChunkSums {
+    fn add_outcome(&mut self, o: &PairOutcome) {
+        self.born_energy += o.born_energy;
+        self.released += o.released;
+        self.born_deep += u64::from(o.born_deep);
+        self.ended_dissipation += o.ended_dissipation;
+    }
+
+    pub(crate) fn add_touching(&mut self, c: &PairContact) {
+        self.elastic += c.forces.elastic_energy;
+        self.friction += c.state.dissipated.friction;
+    }
+
+    /// Adds this chunk's sums to the step's: `total`, the report and the ended pairs'
+    /// friction.
+    fn add_to(&self, total: &mut ChunkSums) {
+        total.born_energy += self.born_energy;
+        total.released += self.released;
+        total.born_deep += self.born_deep;
+        total.ended_dissipation += self.ended_dissipation;
+        total.elastic += self.elastic;
+        total.friction += self.friction;
+    }
+}
+
+/// One chunk's part of the last update.
+#[derive(Clone, Debug, Default)]
+struct ChunkOut {
+    /// The outcomes of the pairs it stepped (not the far-apart ones), with their index, in
+    /// order (the parallel update only).
+    outcomes: Vec<(u32, PairOutcome)>,
+    /// The pairs that started touching.
+    fresh: Vec<usize>,
+    /// The touching pairs whose dashpots pushed, in key order: what `dashpot_dissipation`
+    /// needs, gathered while each contact was at hand.
+    pushed: Vec<Pushed>,
+    sums: ChunkSums,
+}
+
+/// Buffers of [`NeighbourList::update`] (nothing here is saved).
+#[derive(Clone, Debug, Default)]
+pub(crate) struct PairScratch {
+    /// Per chunk of [`PAIR_CHUNK`] candidates, its part of the last update.
+    chunks: Vec<ChunkOut>,
+    /// Indices of the pairs that started touching at the last update.
+    pub(crate) fresh: Vec<usize>,
+    /// Per candidate pair, where its outcome is in its chunk's list at the last parallel
+    /// update (written for the pairs it stepped only).
+    position: Vec<u32>,
+    /// With dashpots and more than one thread (`update`'s `damped`), one per candidate pair:
+    /// the moments of its dashpots' force alone about the two bodies' centres (body 1's,
+    /// body 2's), for their power after the kick (`dashpots::pair_dashpot_power`); written
+    /// only for the touching pairs whose dashpots pushed (the others are never read).
+    dashpot: Vec<[Vec3; 2]>,
+    /// The boxes of contacts that ended, for the next births (one thread): a birth takes one
+    /// instead of allocating.
+    #[allow(clippy::vec_box, reason = "the boxes are what is kept, to serve again")]
+    spare: Vec<Box<PairContact>>,
+}
+
+/// The chunks of `candidates` pairs, cleared (their buffers kept).
+fn chunks_for(chunks: &mut Vec<ChunkOut>, candidates: usize) -> &mut [ChunkOut] {
+    let used = candidates.div_ceil(PAIR_CHUNK);
+    if chunks.len() < used {
+        chunks.resize_with(used, ChunkOut::default);
+    }
+    for c in &mut chunks[..used] {
+        c.outcomes.clear();
+        c.fresh.clear();
+        c.pushed.clear();
+        c.sums = ChunkSums::default();
+    }
+    &mut chunks[..used]
+}
+
+impl PairScratch {
+    /// The step's sums from the chunks', in chunk order: the report, the ended pairs'
+    /// friction added to `ended_dissipation`, and the fresh pairs gathered in order.
+    fn totals(&mut self, used: usize, ended_dissipation: &mut Real) -> (BirthReport, ChunkSums) {
+        let mut total = ChunkSums::default();
+        self.fresh.clear();
+        for c in &self.chunks[..used] {
+            c.sums.add_to(&mut total);
+            self.fresh.extend_from_slice(&c.fresh);
+        }
+        *ended_dissipation += total.ended_dissipation;
+        let report = BirthReport {
+            born_deep: total.born_deep,
+            born_energy: total.born_energy,
+            released: total.released,
+        };
+        (report, total)
+    }
+}
+
+impl NeighbourList {
+    /// One step of every pair (in parallel): whether it touches; a new contact made as the
+    /// general pipeline makes it (`contacts::new_contact`) with its birth accounted for; an
+    /// ended one's friction, elastic and shear energy accounted for; then the contact law
+    /// and the node loads of every touching pair, into the scratch's chunks (the outcomes of
+    /// the pairs that are not far apart, in order, per chunk), and when `damped` (a contact
+    /// may have dashpots) the moments of the dashpots' force alone and the records of the
+    /// pairs whose dashpots pushed. `dt` is the step just done (the contact law's and the
+    /// births' step). Returns what the births and ends moved the energy balance by, and adds
+    /// the ended pairs' friction to `ended_dissipation`.
+    pub(crate) fn update(
+        &mut self,
+        model: &Model,
+        dt: Real,
+        damped: bool,
+        scratch: &mut PairScratch,
+        ended_dissipation: &mut Real,
+    ) -> BirthReport {
+        let p = &model.particles;
+        let k = Kinematics { pos: &p.pos, vel: &p.vel, ang_vel: &p.ang_vel };
+        let used = self.keys.len().div_ceil(PAIR_CHUNK);
+        scratch.position.resize(self.keys.len(), 0);
+        if damped {
+            scratch.dashpot.resize(self.keys.len(), [Vec3::zeros(); 2]);
+        } else {
+            scratch.dashpot.clear();
+        }
+        let dashpot_chunks = scratch.dashpot.par_chunks_mut(PAIR_CHUNK);
+        // (without dashpots there is no moment to keep: empty chunks, never read)
+        let no_dashpots = (0..used).into_par_iter().map(|_| &mut [][..]);
+        let moments: rayon::iter::Either<_, _> = if damped {
+            rayon::iter::Either::Left(dashpot_chunks)
+        } else {
+            rayon::iter::Either::Right(no_dashpots)
+        };
+        let chunks = chunks_for(&mut scratch.chunks, self.keys.len());
+        self.keys
+            .par_chunks(PAIR_CHUNK)
+            .zip(self.contacts.par_chunks_mut(PAIR_CHUNK))
+            .zip(scratch.position.par_chunks_mut(PAIR_CHUNK))
+            .zip(chunks.par_iter_mut())
+            .zip(moments)
+            .enumerate()
+            .for_each(|(c, ((((keys, slots), positions), out), dashpots))| {
+                let base = c * PAIR_CHUNK;
+                for (i, (key, slot)) in keys.iter().zip(slots.iter_mut()).enumerate() {
+                    if slot.is_none() && apart(p, key) {
+                        continue;
+                    }
+                    let d = dashpots.get_mut(i);
+                    let o = step_pair(model, &k, key, slot, dt, d, None);
+                    out.sums.add_outcome(&o);
+                    if o.fresh {
+                        out.fresh.push(base + i);
+                    }
+                    if let Some(contact) = slot.as_deref() {
+                        out.sums.add_touching(contact);
+                        if damped {
+                            out.pushed.extend(Pushed::of(base + i, contact, &dashpots[i]));
+                        }
+                    }
+                    positions[i] = out.outcomes.len() as u32;
+                    out.outcomes.push(((base + i) as u32, o));
+                }
+            });
+        let (report, total) = scratch.totals(used, ended_dissipation);
+        self.sums = Some((total.elastic, total.friction));
+        report
+    }
+
+    /// [`NeighbourList::update`] in one pass on this thread, giving `sink` each touching
+    /// pair's key (`Sink::Before`), then its node loads (`Sink::Load`), in key order: the
+    /// loads are summed as they come (no buffer), with the same results (and, when `damped`,
+    /// the records of the pairs whose dashpots pushed, as `update` keeps them).
+    pub(crate) fn update_in_order(
+        &mut self,
+        model: &Model,
+        dt: Real,
+        damped: bool,
+        scratch: &mut PairScratch,
+        ended_dissipation: &mut Real,
+        mut sink: impl FnMut(Sink<'_>),
+    ) -> BirthReport {
+        let p = &model.particles;
+        let k = Kinematics { pos: &p.pos, vel: &p.vel, ang_vel: &p.ang_vel };
+        let used = self.keys.len().div_ceil(PAIR_CHUNK);
+        let spare = &mut scratch.spare;
+        let chunks = chunks_for(&mut scratch.chunks, self.keys.len());
+        for (n, (key, slot)) in self.keys.iter().zip(self.contacts.iter_mut()).enumerate() {
+            if slot.is_none() && apart(p, key) {
+                // (what step_pair would say at more cost: nothing happened)
+                continue;
+            }
+            let out = &mut chunks[n / PAIR_CHUNK];
+            let mut moments = [Vec3::zeros(); 2];
+            let dashpot = if damped { Some(&mut moments) } else { None };
+            let o = step_pair(model, &k, key, slot, dt, dashpot, Some(&mut *spare));
+            out.sums.add_outcome(&o);
+            if o.fresh {
+                out.fresh.push(n);
+            }
+            if let Some(c) = slot {
+                out.sums.add_touching(c);
+                if damped {
+                    out.pushed.extend(Pushed::of(n, c, &moments));
+                }
+                sink(Sink::Before(key));
+                let first = usize::from(matches!(key.0, Feature::Wall(_)));
+                o.loads[first..].iter().for_each(|l| sink(Sink::Load(l)));
+            }
+        }
+        let (report, total) = scratch.totals(used, ended_dissipation);
+        self.sums = Some((total.elastic, total.friction));
+        report
+    }
+
+    /// The dashpots of the touching pairs at the last update (`update` with `damped`):
+    /// `(Σ dissipated.viscous, Σ power)`, the law's own count and the power of their forces
+    /// with the particles' and walls' current velocities (`dashpots::dashpot_power`; called
+    /// after the kick).
+    pub(crate) fn dashpot_dissipation(&self, scratch: &PairScratch, model: &Model) -> (Real, Real) {
+        let (mut law, mut power) = (0.0, 0.0);
+        let used = self.keys.len().div_ceil(PAIR_CHUNK).min(scratch.chunks.len());
+        for d in scratch.chunks[..used].iter().flat_map(|c| &c.pushed) {
+            law += d.viscous;
+            power += pair_dashpot_power(&self.keys[d.index as usize], &d.force, &d.moments, model);
+        }
+        (law, power)
+    }
+
+    /// The touching pairs after the last (parallel) update, in order: each one's index and
+    /// node loads (body 1's, none for a wall, and body 2's), as `merged` picks them.
+    pub(crate) fn touching_loads<'a>(
+        &'a self,
+        scratch: &'a PairScratch,
+    ) -> impl Iterator<Item = (usize, &'a [NodeLoad])> + 'a {
+        let used = self.keys.len().div_ceil(PAIR_CHUNK);
+        scratch.chunks[..used.min(scratch.chunks.len())]
+            .iter()
+            .flat_map(|c| &c.outcomes)
+            .filter(move |(n, _)| self.contacts[*n as usize].is_some())
+            .map(move |(n, o)| {
+                let wall = matches!(self.keys[*n as usize].0, Feature::Wall(_));
+                (*n as usize, &o.loads[usize::from(wall)..])
+            })
+    }
+
+    /// Body `side`'s node load of candidate pair `n` at the last parallel update
+    /// ([`NeighbourList::update`]), if the pair touches.
+    #[inline]
+    pub(crate) fn load_of<'a>(
+        &self,
+        scratch: &'a PairScratch,
+        n: usize,
+        side: usize,
+    ) -> Option<&'a NodeLoad> {
+        self.contacts[n].as_ref()?;
+        let position = scratch.position[n] as usize;
+        Some(&scratch.chunks[n / PAIR_CHUNK].outcomes[position].1.loads[side])
+    }
+
+    /// Elastic energy stored at the last update.
+    pub fn elastic_energy(&self) -> Real {
+        self.energy_sums().0
+    }
+
+    /// Friction dissipated by the touching pairs over their lives.
+    pub fn dissipated(&self) -> Real {
+        self.energy_sums().1
+    }
+
+    /// `(elastic_energy(), dissipated())` in one pass over the contacts: as the last update
+    /// summed them (per chunk of candidates, then over the chunks), or summed so.
+    pub(crate) fn energy_sums(&self) -> (Real, Real) {
+        self.sums.unwrap_or_else(|| self.chunked_energy_sums())
+    }
+
+    /// `(elastic energy, friction)` of the touching pairs, summed per chunk of
+    /// [`PAIR_CHUNK`] candidates and then over the chunks, as the updates sum them.
+    pub(crate) fn chunked_energy_sums(&self) -> (Real, Real) {
+        let mut total = ChunkSums::default();
+        for chunk in self.contacts.chunks(PAIR_CHUNK) {
+            let mut sums = ChunkSums::default();
+            chunk.iter().flatten().for_each(|c| sums.add_touching(c));
+            total.elastic += sums.elastic;
+            total.friction += sums.friction;
+        }
+        (total.elastic, total.friction)
+    }
+}
