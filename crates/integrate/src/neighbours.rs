@@ -284,8 +284,8 @@ pub(crate) fn step_pair(
     dt: Real,
     dashpot: Option<&mut [Vec3; 2]>,
     mut spare: Option<&mut Vec<Box<PairContact>>>,
-) -> PairOutcome {
-    let mut out = PairOutcome::default();
+    out: &mut PairOutcome,
+) {
     // the hot case, a sphere–sphere contact that goes on: one distance, and no candidate,
     // sites or owners (the general path below computes the same numbers: `Candidate`'s
     // overlap is r₁ + r₂ − |c₂ − c₁| too, and it then calls `sphere_geometry` alike)
@@ -295,13 +295,13 @@ pub(crate) fn step_pair(
         if let Some(g) = sphere_geometry(p, i, j, &c.state.normal).filter(|g| g.overlap > 0.0) {
             let nodes = [i as u32, j as u32];
             out.loads = apply_law(c, &g, nodes, [p.pos[i], p.pos[j]], dt, dashpot);
-            return out;
+            return;
         }
     }
     let touching = match *key {
         (Feature::Particle(i), Feature::Particle(j)) => {
             if slot.is_none() && apart(&model.particles, key) {
-                return out;
+                return;
             }
             sphere_touching(model, i, j)
         }
@@ -380,7 +380,6 @@ pub(crate) fn step_pair(
         let nodes = [site1.nodes[0], site2.nodes[0]];
         out.loads = apply_law(c, &g, nodes, [center1, center2], dt, dashpot);
     }
-    out
 }
 
 /// The contact law of a pair in contact, at geometry `g`, and the loads on its two bodies

@@ -211,8 +211,12 @@ impl NeighbourList {
                         continue;
                     }
                     let d = dashpots.get_mut(i);
-                    let o = step_pair(model, &k, key, slot, dt, d, None);
-                    out.sums.add_outcome(&o);
+                    // the outcome written where it is kept (no copy of it)
+                    positions[i] = out.outcomes.len() as u32;
+                    out.outcomes.push(((base + i) as u32, PairOutcome::default()));
+                    let o = &mut out.outcomes.last_mut().expect("just pushed").1;
+                    step_pair(model, &k, key, slot, dt, d, None, o);
+                    out.sums.add_outcome(o);
                     if o.fresh {
                         out.fresh.push(base + i);
                     }
@@ -222,8 +226,6 @@ impl NeighbourList {
                             out.pushed.extend(Pushed::of(base + i, contact, &dashpots[i]));
                         }
                     }
-                    positions[i] = out.outcomes.len() as u32;
-                    out.outcomes.push(((base + i) as u32, o));
                 }
             });
         let (report, total) = scratch.totals(used, ended_dissipation);
@@ -257,7 +259,8 @@ impl NeighbourList {
             let out = &mut chunks[n / PAIR_CHUNK];
             let mut moments = [Vec3::zeros(); 2];
             let dashpot = if damped { Some(&mut moments) } else { None };
-            let o = step_pair(model, &k, key, slot, dt, dashpot, Some(&mut *spare));
+            let mut o = PairOutcome::default();
+            step_pair(model, &k, key, slot, dt, dashpot, Some(&mut *spare), &mut o);
             out.sums.add_outcome(&o);
             if o.fresh {
                 out.fresh.push(n);
