@@ -4,8 +4,9 @@
 //! and over every contact in key order).
 
 use crate::contact::Contact;
-use crate::neighbours::{merged, merged_from, NeighbourList, Pick};
-use flexdem_elements::virtual_sphere::Feature;
+use crate::neighbours::{merged, merged_from, sites, NeighbourList, Pick};
+use flexdem_contact::FrictionalParams;
+use flexdem_elements::virtual_sphere::{Feature, Site};
 use flexdem_elements::Model;
 use flexdem_geom::{Real, Vec3};
 use serde::{Deserialize, Serialize};
@@ -99,15 +100,23 @@ impl Contacts {
         }
     }
 
-    /// Calls `f` on every contact in key order (the free spheres' made on the fly).
-    pub(crate) fn for_each(&self, model: &Model, mut f: impl FnMut(&Contact)) {
+    /// Calls `f(site 1, site 2, law constants, normal)` on every contact in key order, none
+    /// made (the time step's stiffness sums: a free sphere's contact is not cloned).
+    pub(crate) fn for_each_law(
+        &self,
+        model: &Model,
+        mut f: impl FnMut(&Site, &Site, &FrictionalParams, &Vec3),
+    ) {
         for pick in merged(&self.list, &self.pairs) {
             match pick {
-                Pick::General(n) => f(&self.list[n]),
+                Pick::General(n) => {
+                    let c = &self.list[n];
+                    f(&c.site1, &c.site2, &c.params, &c.state.normal);
+                }
                 Pick::Pair(n) => {
-                    if let Some(c) = self.pairs.contact(model, n) {
-                        f(&c);
-                    }
+                    let (key, c) = self.pairs.get(n);
+                    let (site1, site2) = sites(model, key);
+                    f(&site1, &site2, &c.params, &c.state.normal);
                 }
             }
         }

@@ -2,7 +2,6 @@
 //! bookkeeping around them: energy terms, the energy watch, the checks of a run going
 //! unstable and the time step.
 
-use crate::contact::Contact;
 use crate::culprit::describe;
 use crate::dashpots::damped_stiffness_factor;
 use crate::energy::PendingWork;
@@ -17,6 +16,8 @@ use crate::simulation::Simulation;
 use crate::time_step::{critical_step_from_stiffness, p_wave_time_step, StiffnessSums};
 use crate::timers::Stage;
 use crate::SimulationError;
+use flexdem_contact::FrictionalParams;
+use flexdem_elements::virtual_sphere::Site;
 use flexdem_elements::{Dofs, Particles};
 use flexdem_geom::{Real, Vec3};
 use rayon::prelude::*;
@@ -53,7 +54,9 @@ impl Simulation {
                 k.add(i, &n, s.kn, s.ks, 0.5 * len, s.kt, s.kb);
             }
         }
-        self.state.contacts.for_each(&self.state.model, |c| add_contact_stiffness(&mut k, c, p));
+        self.state.contacts.for_each_law(&self.state.model, |site1, site2, params, normal| {
+            add_contact_stiffness(&mut k, [site1, site2], params, normal, p)
+        });
         self.state.clock.dt_updated_at = self.state.clock.steps;
         let critical = critical_step_from_stiffness(&self.state.model, &k)
             .or_else(|| p_wave_time_step(&self.state.model))
@@ -344,7 +347,8 @@ impl Simulation {
                     &made
                 }
             };
-            add_contact_stiffness(&mut self.state.clock.stiffness, c, p);
+            let k = &mut self.state.clock.stiffness;
+            add_contact_stiffness(k, [&c.site1, &c.site2], &c.params, &c.state.normal, p);
             for site in [&c.site1, &c.site2] {
                 for slot in 0..site.node_count() {
                     let n = site.nodes[slot] as usize;
@@ -529,20 +533,26 @@ struct WallPower {
 /// stiffness on each: conservative), with the site's radius as the lever arm of the shear.
 /// A contact with dashpots counts for the stiffer spring whose stability limit it has
 /// (`damped_stiffness_factor`, model.md §7).
-fn add_contact_stiffness(k: &mut StiffnessSums, c: &Contact, p: &Particles) {
-    let n = c.state.normal;
-    let (kn, ks) = (c.params.kn, c.params.ks);
-    let damped = c.params.is_damped();
-    for site in [&c.site1, &c.site2] {
+fn add_contact_stiffness(
+    k: &mut StiffnessSums,
+    sites: [&Site; 2],
+    params: &FrictionalParams,
+    n: &Vec3,
+    p: &Particles,
+) {
+    let c = params;
+    let (kn, ks) = (c.kn, c.ks);
+    let damped = c.is_damped();
+    for site in sites {
         for slot in 0..site.node_count() {
             let node = site.nodes[slot] as usize;
             if damped {
                 let m = p.mass[node];
-                let kn = kn * damped_stiffness_factor(kn, c.params.cn, m);
-                let ks = ks * damped_stiffness_factor(ks, c.params.ct, m);
-                k.add(node, &n, kn, ks, site.radius, 0.0, 0.0);
+                let kn = kn * damped_stiffness_factor(kn, c.cn, m);
+                let ks = ks * damped_stiffness_factor(ks, c.ct, m);
+                k.add(node, n, kn, ks, site.radius, 0.0, 0.0);
             } else {
-                k.add(node, &n, kn, ks, site.radius, 0.0, 0.0);
+                k.add(node, n, kn, ks, site.radius, 0.0, 0.0);
             }
         }
     }
