@@ -16,7 +16,7 @@ use crate::gather::{fits_codes, LoadIndex};
 use crate::neighbours::{merged, Pick, Sink};
 use crate::pair_passes::PairScratch;
 use crate::parallel::{MIN_PARALLEL_CHEAP, MIN_PARALLEL_COSTLY};
-use crate::prefilter::{hull, proven_apart, Hull};
+use crate::prefilter::{proven_apart, write_hull, Hull};
 use flexdem_contact::{update_frictional_contact, ContactDamping};
 use flexdem_elements::pairs::{self, Candidate, ConnectionRef, PFacetRef, SphereRef};
 use flexdem_elements::touching::{dominates, Element, ElementCandidate, Topology};
@@ -222,7 +222,12 @@ impl ContactPipeline {
                 .zip(elements.par_iter())
                 .enumerate()
                 .with_min_len(MIN_PARALLEL_CHEAP)
-                .for_each(|(i, (h, &e))| *h = if paired(i) { hull(model, e) } else { unused });
+                .for_each(|(i, (h, &e))| {
+                    // (an element in no pair keeps a stale hull: none reads it)
+                    if paired(i) {
+                        write_hull(model, e, h);
+                    }
+                });
         }
         let hulls = &self.scratch.hulls;
         collider
