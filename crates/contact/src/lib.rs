@@ -44,10 +44,7 @@ pub use link::{
     LinkStatus,
 };
 pub use material::{effective_strength, ContactDamping, FailureMode, Material, MaterialError};
-pub use rotation::{
-    renormalized, rotate_about_axis, rotate_between, rotation_vector, transport_tangent,
-    turn_quaternion,
-};
+pub use rotation::{rotate_about_axis, rotate_between, rotation_vector, transport_tangent};
 pub use stiffness::{
     beam_link_stiffness, contact_stiffness, friction_coefficient, ContactStiffness, LinkStiffness,
 };

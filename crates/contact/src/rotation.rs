@@ -5,7 +5,7 @@
 //! is exact (Rodrigues) and preserves the magnitude.
 
 use flexdem_geom::{Real, Vec3};
-use nalgebra::{Quaternion, UnitQuaternion};
+use nalgebra::UnitQuaternion;
 
 /// Rotates `v` by `angle` about the unit `axis` (Rodrigues):
 /// v' = v cosψ + (a×v) sinψ + a(a·v)(1 − cosψ).
@@ -33,36 +33,6 @@ pub fn sin_one_minus_cos(angle: Real) -> (Real, Real) {
         let (s, c) = angle.sin_cos();
         (s, 1.0 - c)
     }
-}
-
-/// Below this squared angle (rad², an angle of 1e-2), [`turn_quaternion`] sums series.
-const TURN_SERIES_BELOW2: Real = 1e-4;
-
-/// The unit quaternion of a turn by the rotation vector θ (the angle |θ| about θ/|θ|):
-/// (cos(|θ|/2), θ·sin(|θ|/2)/|θ|). For |θ| < 1e-2, a particle's usual turn in one step, from
-/// |θ|² by the series cos(|θ|/2) = 1 − |θ|²/8 + |θ|⁴/384 − |θ|⁶/46080 and
-/// sin(|θ|/2)/|θ| = ½(1 − |θ|²/24 + |θ|⁴/1920 − |θ|⁶/322560) (first omitted terms below 1e-22):
-/// no square root and no `sin_cos`; else nalgebra's `from_scaled_axis`.
-#[inline]
-pub fn turn_quaternion(turn: Vec3) -> UnitQuaternion<Real> {
-    let t2 = turn.norm_squared();
-    if t2 < TURN_SERIES_BELOW2 {
-        // (the constants' reciprocals are folded at compile time: multiplications only)
-        let c = 1.0 - t2 * (1.0 / 8.0) * (1.0 - t2 * (1.0 / 48.0) * (1.0 - t2 * (1.0 / 120.0)));
-        let s = 0.5
-            * (1.0 - t2 * (1.0 / 24.0) * (1.0 - t2 * (1.0 / 80.0) * (1.0 - t2 * (1.0 / 168.0))));
-        UnitQuaternion::new_unchecked(Quaternion::new(c, turn.x * s, turn.y * s, turn.z * s))
-    } else {
-        UnitQuaternion::from_scaled_axis(turn)
-    }
-}
-
-/// `q` scaled back to unit norm (one square root and one division; nalgebra's `renormalize`
-/// divides each of the four components).
-#[inline]
-pub fn renormalized(q: UnitQuaternion<Real>) -> UnitQuaternion<Real> {
-    let q = q.into_inner();
-    UnitQuaternion::new_unchecked(q * (1.0 / q.norm()))
 }
 
 /// Below this x, atan(x)/x is summed as a series: the first omitted term, x¹⁰/11, is below
@@ -178,22 +148,6 @@ mod tests {
             }
         }
         assert!(worst.0 < 4e-16 && worst.1 < 4e-16, "worst relative errors {worst:?}");
-    }
-
-    #[test]
-    fn turn_quaternion_matches_nalgebra_across_the_switch() {
-        let axis = Vec3::new(0.3, -0.5, 0.8).normalize();
-        for &ang in &[0.0, 1e-9, 1e-5, 3e-3, 9.99e-3, 1.001e-2, 0.3, 2.0] {
-            let q = turn_quaternion(axis * ang);
-            let r = UnitQuaternion::from_scaled_axis(axis * ang);
-            assert!((q.into_inner() - r.into_inner()).norm() < 3e-16, "{ang}");
-            assert!((q.into_inner().norm() - 1.0).abs() < 3e-16, "{ang}");
-        }
-        let q = UnitQuaternion::new_unchecked(Quaternion::new(1.0, 2.0, -2.0, 4.0));
-        assert!((renormalized(q).into_inner().norm() - 1.0).abs() < 1e-15);
-        assert!(
-            (renormalized(q).into_inner() - Quaternion::new(0.2, 0.4, -0.4, 0.8)).norm() < 1e-15
-        );
     }
 
     #[test]

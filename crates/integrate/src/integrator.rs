@@ -9,9 +9,9 @@
 //! damped as `aᵢ ← aᵢ·(1 − λ·sign(aᵢ·(vᵢ + aᵢ·dt/2)))`. A blocked DOF keeps its velocity
 //! component (0, or an imposed value) and feels neither force nor gravity.
 
-use flexdem_contact::{renormalized, turn_quaternion};
 use flexdem_elements::{Dofs, Particles};
 use flexdem_geom::{Real, Vec3};
+use nalgebra::UnitQuaternion;
 use rayon::prelude::*;
 
 /// Particles per parallel chunk: fixed, so that reductions (energies) are summed in the same
@@ -181,7 +181,9 @@ pub fn leapfrog_step(
                     }
                     let turn = ang[i] * dt;
                     if turn != Vec3::zeros() {
-                        ori[i] = renormalized(turn_quaternion(turn) * ori[i]);
+                        let mut q = UnitQuaternion::from_scaled_axis(turn) * ori[i];
+                        q.renormalize();
+                        ori[i] = q;
                     }
                 }
             }

@@ -386,7 +386,7 @@ pub(crate) fn step_pair(
 /// (`nodes`, with their `centers`): a particle's site takes the whole force, and its moment
 /// about the centre (`distribute_force` with the weight 1). With `dashpot`, the moments of the
 /// dashpots' force alone (the forces are −fd on body 1 and fd on body 2), when they pushed.
-#[inline]
+#[inline(always)]
 fn apply_law(
     c: &mut PairContact,
     g: &ContactGeometry,
@@ -427,6 +427,7 @@ pub(crate) enum Sink<'a> {
 /// `previous_normal`: `contact_geometry_crossing` of their centres, the same operations in the
 /// same order, without the virtual spheres; None when the centres (nearly) coincide or have
 /// crossed (`d·n₀ ≤ 0`), where the general function decides the normal.
+#[inline(always)]
 fn sphere_geometry(
     p: &flexdem_elements::Particles,
     i: usize,

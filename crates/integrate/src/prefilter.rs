@@ -54,27 +54,35 @@ impl Hull {
 #[inline]
 pub fn write_hull(model: &Model, e: Element, h: &mut Hull) {
     let p = &model.particles.pos;
-    let (points, count, radius) = match e {
-        Element::Particle(i) => ([p[i as usize]; 3], 1, model.particles.radius[i as usize]),
+    match e {
+        Element::Particle(i) => {
+            fill::<1>(h, [p[i as usize]; 3], model.particles.radius[i as usize]);
+        }
         Element::Connection(k) => {
             let c = &model.connections[k as usize];
             let (a, b) = (p[c.nodes[0] as usize], p[c.nodes[1] as usize]);
-            ([a, b, b], 2, c.radius)
+            fill::<2>(h, [a, b, b], c.radius);
         }
         Element::PFacet(k) => {
             let f = &model.pfacets[k as usize];
-            (f.nodes.map(|n| p[n as usize]), 3, f.radius)
+            fill::<3>(h, f.nodes.map(|n| p[n as usize]), f.radius);
         }
-    };
-    h.centroid = points[..count].iter().sum::<Vec3>() / count as Real;
-    h.normal = if count == 3 {
+    }
+}
+
+/// [`Hull::new`] written into `h`, with the count known when compiled (the centroid's sum
+/// unrolled, the normal only for a PFacet).
+#[inline(always)]
+fn fill<const COUNT: usize>(h: &mut Hull, points: [Vec3; 3], radius: Real) {
+    h.centroid = points[..COUNT].iter().sum::<Vec3>() / COUNT as Real;
+    h.normal = if COUNT == 3 {
         let [p, q, r] = points;
         (q - p).cross(&(r - p)).try_normalize(0.0).unwrap_or_else(Vec3::zeros)
     } else {
         Vec3::zeros()
     };
     h.points = points;
-    h.count = count;
+    h.count = COUNT;
     h.radius = radius;
 }
 
