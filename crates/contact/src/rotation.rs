@@ -56,18 +56,28 @@ fn atan_non_negative(x: Real) -> Real {
 }
 
 /// Rotates `v` by the minimal rotation taking the unit vector `a` onto the unit vector `b`:
-/// with c = a×b and cosθ = a·b, v' = v cosθ + c×v + c(c·v)/(1 + cosθ).
-/// Exact for any angle below π; `None` when `a` and `b` are (nearly) opposite
-/// (1 + a·b < 1e-12), where the minimal rotation is not defined.
+/// with s = a + b, v' = v − s(s·v)/(1 + a·b) + 2b(a·v), the same rotation as
+/// v cosθ + c×v + c(c·v)/(1 + cosθ) (c = a×b, cosθ = a·b) with dot products only (two
+/// reflections: R = I − s sᵀ/(1 + a·b) + 2 b aᵀ). Exact for any angle below π; `None` when
+/// `a` and `b` are (nearly) opposite (1 + a·b < 1e-12), where the minimal rotation is not
+/// defined.
 #[inline]
 pub fn rotate_between(v: Vec3, a: Vec3, b: Vec3) -> Option<Vec3> {
-    let c = a.cross(&b);
-    let cos = a.dot(&b);
-    let one_plus = 1.0 + cos;
+    let one_plus = 1.0 + a.dot(&b);
     if one_plus < 1e-12 {
         return None;
     }
-    Some(v * cos + c.cross(&v) + c * (c.dot(&v) / one_plus))
+    let s = a + b;
+    Some(v - s * (s.dot(&v) / one_plus) + b * (2.0 * a.dot(&v)))
+}
+
+/// Rotates `t`, tangent to the unit `axis`, by `angle` about it: t cosψ + (a×t) sinψ, the
+/// Rodrigues rotation ([`rotate_about_axis`]) without its a(a·t)(1 − cosψ) term, which is
+/// round-off for a tangent vector (the caller projects onto the tangent plane after).
+#[inline]
+fn twist_tangent(t: Vec3, axis: Vec3, angle: Real) -> Vec3 {
+    let (s, one_minus_c) = sin_one_minus_cos(angle);
+    t * (1.0 - one_minus_c) + axis.cross(&t) * s
 }
 
 /// Carries a tangential vector (the shear force) from the tangent plane of the previous normal
@@ -86,7 +96,7 @@ pub fn transport_tangent(v: Vec3, n_old: Vec3, n_new: Vec3, twist_angle: Real) -
     let Some(swung) = rotate_between(v, n_old, n_new) else {
         return Vec3::zeros();
     };
-    let t = if twist_angle == 0.0 { swung } else { rotate_about_axis(swung, n_new, twist_angle) };
+    let t = if twist_angle == 0.0 { swung } else { twist_tangent(swung, n_new, twist_angle) };
     let t = t - n_new * n_new.dot(&t);
     let t2 = t.norm_squared();
     if t2 > 0.0 {
