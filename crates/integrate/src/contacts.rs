@@ -33,7 +33,6 @@ pub(crate) struct ContactPipeline {
     pub(crate) fresh: Vec<usize>,
     /// Buffers of the neighbour list's update (its fresh pairs among them).
     pub(crate) pairs: PairScratch,
-    candidates: Vec<Option<ElementCandidate>>,
     touching: Vec<ElementCandidate>,
     loads: Vec<[NodeLoad; 6]>,
     /// Whether a contact may have a dashpot (a material has damping, or a contact kept from
@@ -51,13 +50,17 @@ pub(crate) struct ContactPipeline {
     pfacet_connections: Vec<[u32; 3]>,
 }
 
+/// Candidate pairs per parallel task of the detection (fixed, the order of the touchings does
+/// not depend on it: each chunk keeps its own in pair order, read back in chunk order).
+const DETECT_CHUNK: usize = 1024;
+
 /// Buffers of [`ContactPipeline::detect`].
 #[derive(Clone, Debug, Default)]
 struct Scratch {
     order: Vec<(Feature, Feature, u32)>,
     hulls: Vec<Hull>,
-    maybe: Vec<bool>,
-    near: Vec<(u32, u32)>,
+    /// Per chunk of [`DETECT_CHUNK`] candidate pairs, its touching ones at the last detection.
+    found: Vec<Vec<ElementCandidate>>,
     keys: Vec<(u32, u32)>,
     survivors: Vec<Option<Touching>>,
     all: Vec<Touching>,
@@ -230,31 +233,34 @@ impl ContactPipeline {
                 });
         }
         let hulls = &self.scratch.hulls;
+        // per fixed chunk of candidate pairs, in parallel: the slab test, then the exact
+        // kernel of the survivors, the touching ones kept in pair order (one pass, no
+        // serial filtering of every pair's flag in between)
+        let chunks = collider.pairs.len().div_ceil(DETECT_CHUNK);
+        if self.scratch.found.len() < chunks {
+            self.scratch.found.resize_with(chunks, Vec::new);
+        }
         collider
             .pairs
-            .par_iter()
-            .with_min_len(MIN_PARALLEL_CHEAP)
-            .map(|&(i, j)| !proven_apart(&hulls[i as usize], &hulls[j as usize]))
-            .collect_into_vec(&mut self.scratch.maybe);
-        let near = &mut self.scratch.near;
-        near.clear();
-        near.extend(
-            collider.pairs.iter().zip(&self.scratch.maybe).filter(|(_, &m)| m).map(|(&p, _)| p),
-        );
-        near.par_iter()
-            .with_min_len(MIN_PARALLEL_COSTLY)
-            .map(|&(i, j)| {
-                let (a, b) = (elements[i as usize], elements[j as usize]);
-                let c = candidate(model, a, b);
-                (c.overlap() > 0.0).then_some(ElementCandidate {
-                    element1: a,
-                    element2: b,
-                    candidate: c,
-                })
-            })
-            .collect_into_vec(&mut self.candidates);
+            .par_chunks(DETECT_CHUNK)
+            .zip(self.scratch.found[..chunks].par_iter_mut())
+            .for_each(|(pairs, found)| {
+                found.clear();
+                for &(i, j) in pairs {
+                    if proven_apart(&hulls[i as usize], &hulls[j as usize]) {
+                        continue;
+                    }
+                    let (a, b) = (elements[i as usize], elements[j as usize]);
+                    let c = candidate(model, a, b);
+                    if c.overlap() > 0.0 {
+                        found.push(ElementCandidate { element1: a, element2: b, candidate: c });
+                    }
+                }
+            });
         self.touching.clear();
-        self.touching.extend(self.candidates.iter().flatten());
+        for found in &self.scratch.found[..chunks] {
+            self.touching.extend_from_slice(found);
+        }
 
         // 2. one contact per touching: drop the dominated candidates (indexed lookups)
         let topology = Topology {
