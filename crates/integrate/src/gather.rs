@@ -11,7 +11,7 @@
 //! particle's entries of the two are merged by key.
 
 use crate::contact::Contact;
-use crate::neighbours::{ContactKey, NeighbourList};
+use crate::neighbours::NeighbourList;
 use crate::pair_passes::PairScratch;
 use flexdem_elements::virtual_sphere::{Feature, NodeLoad};
 use flexdem_geom::Vec3;
@@ -128,7 +128,7 @@ impl LoadIndex {
                     // the two lists merged by key (a pair that does not touch adds nothing)
                     while a < general.len() || b < paired.len() {
                         let take_general = match (general.get(a), paired.get(b)) {
-                            (Some(&g), Some(&p)) => key_before(&general_key(g), &pair_key(p)),
+                            (Some(&g), Some(&p)) => general_key(g) < pair_key(p),
                             (Some(_), None) => true,
                             _ => false,
                         };
@@ -146,11 +146,6 @@ impl LoadIndex {
             },
         );
     }
-}
-
-#[inline]
-fn key_before(a: &ContactKey, b: &ContactKey) -> bool {
-    a < b
 }
 
 /// Entries of particle `i` in a CSR table (none beyond the table).

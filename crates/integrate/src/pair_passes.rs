@@ -97,12 +97,43 @@ struct ChunkOut {
     /// The outcomes of the pairs it stepped (not the far-apart ones), with their index, in
     /// order (the parallel update only).
     outcomes: Vec<(u32, PairOutcome)>,
+    /// What its pairs added to the step's records.
+    book: ChunkBook,
+}
+
+/// What the pairs of one chunk added to the step's records, in pair order (both passes).
+#[derive(Clone, Debug, Default)]
+struct ChunkBook {
     /// The pairs that started touching.
     fresh: Vec<usize>,
     /// The touching pairs whose dashpots pushed, in key order: what `dashpot_dissipation`
     /// needs, gathered while each contact was at hand.
     pushed: Vec<Pushed>,
     sums: ChunkSums,
+}
+
+impl ChunkBook {
+    /// Books the step of pair `n`: its outcome `o`, and when it touches after the step
+    /// (`contact`), its energy and, with `moments` (a contact may have dashpots), the record
+    /// of its dashpots if they pushed.
+    fn record(
+        &mut self,
+        n: usize,
+        o: &PairOutcome,
+        contact: Option<&PairContact>,
+        moments: Option<&[Vec3; 2]>,
+    ) {
+        self.sums.add_outcome(o);
+        if o.fresh {
+            self.fresh.push(n);
+        }
+        if let Some(c) = contact {
+            self.sums.add_touching(c);
+            if let Some(m) = moments {
+                self.pushed.extend(Pushed::of(n, c, m));
+            }
+        }
+    }
 }
 
 /// Buffers of [`NeighbourList::update`] (nothing here is saved).
@@ -134,9 +165,9 @@ fn chunks_for(chunks: &mut Vec<ChunkOut>, candidates: usize) -> &mut [ChunkOut] 
     }
     for c in &mut chunks[..used] {
         c.outcomes.clear();
-        c.fresh.clear();
-        c.pushed.clear();
-        c.sums = ChunkSums::default();
+        c.book.fresh.clear();
+        c.book.pushed.clear();
+        c.book.sums = ChunkSums::default();
     }
     &mut chunks[..used]
 }
@@ -148,8 +179,8 @@ impl PairScratch {
         let mut total = ChunkSums::default();
         self.fresh.clear();
         for c in &self.chunks[..used] {
-            c.sums.add_to(&mut total);
-            self.fresh.extend_from_slice(&c.fresh);
+            c.book.sums.add_to(&mut total);
+            self.fresh.extend_from_slice(&c.book.fresh);
         }
         *ended_dissipation += total.ended_dissipation;
         let report = BirthReport {
@@ -216,16 +247,8 @@ impl NeighbourList {
                     out.outcomes.push(((base + i) as u32, PairOutcome::default()));
                     let o = &mut out.outcomes.last_mut().expect("just pushed").1;
                     step_pair(model, &k, key, slot, dt, d, None, o);
-                    out.sums.add_outcome(o);
-                    if o.fresh {
-                        out.fresh.push(base + i);
-                    }
-                    if let Some(contact) = slot.as_deref() {
-                        out.sums.add_touching(contact);
-                        if damped {
-                            out.pushed.extend(Pushed::of(base + i, contact, &dashpots[i]));
-                        }
-                    }
+                    let moments = if damped { dashpots.get(i) } else { None };
+                    out.book.record(base + i, o, slot.as_deref(), moments);
                 }
             });
         let (report, total) = scratch.totals(used, ended_dissipation);
@@ -261,15 +284,8 @@ impl NeighbourList {
             let dashpot = if damped { Some(&mut moments) } else { None };
             let mut o = PairOutcome::default();
             step_pair(model, &k, key, slot, dt, dashpot, Some(&mut *spare), &mut o);
-            out.sums.add_outcome(&o);
-            if o.fresh {
-                out.fresh.push(n);
-            }
-            if let Some(c) = slot {
-                out.sums.add_touching(c);
-                if damped {
-                    out.pushed.extend(Pushed::of(n, c, &moments));
-                }
+            out.book.record(n, &o, slot.as_deref(), damped.then_some(&moments));
+            if slot.is_some() {
                 sink(Sink::Before(key));
                 let first = usize::from(matches!(key.0, Feature::Wall(_)));
                 o.loads[first..].iter().for_each(|l| sink(Sink::Load(l)));
@@ -287,7 +303,7 @@ impl NeighbourList {
     pub(crate) fn dashpot_dissipation(&self, scratch: &PairScratch, model: &Model) -> (Real, Real) {
         let (mut law, mut power) = (0.0, 0.0);
         let used = self.keys.len().div_ceil(PAIR_CHUNK).min(scratch.chunks.len());
-        for d in scratch.chunks[..used].iter().flat_map(|c| &c.pushed) {
+        for d in scratch.chunks[..used].iter().flat_map(|c| &c.book.pushed) {
             law += d.viscous;
             power += pair_dashpot_power(&self.keys[d.index as usize], &d.force, &d.moments, model);
         }

@@ -35,22 +35,22 @@ impl Hull {
         &self.points[..self.count]
     }
 
-    /// The hull of the first `count` of `points` grown by `radius`.
+    /// The hull of the first `count` (1 to 3) of `points` grown by `radius`.
     #[inline]
     pub fn new(points: [Vec3; 3], count: usize, radius: Real) -> Hull {
-        let centroid = points[..count].iter().sum::<Vec3>() / count as Real;
-        let normal = if count == 3 {
-            let [p, q, r] = points;
-            (q - p).cross(&(r - p)).try_normalize(0.0).unwrap_or_else(Vec3::zeros)
-        } else {
-            Vec3::zeros()
-        };
-        Hull { points, count, radius, centroid, normal }
+        let z = Vec3::zeros();
+        let mut h = Hull { points, count, radius, centroid: z, normal: z };
+        match count {
+            1 => fill::<1>(&mut h, points, radius),
+            2 => fill::<2>(&mut h, points, radius),
+            _ => fill::<3>(&mut h, points, radius),
+        }
+        h
     }
 }
 
-/// Writes the hull of element `e` of `model` into `h`, field by field (the same values as
-/// [`hull`]; assigning a whole hull went through `memcpy`, 9 % of a 2-thread membrane step).
+/// Writes the hull of element `e` of `model` into `h`, field by field (assigning a whole
+/// hull went through `memcpy`, 9 % of a 2-thread membrane step).
 #[inline]
 pub fn write_hull(model: &Model, e: Element, h: &mut Hull) {
     let p = &model.particles.pos;
@@ -86,24 +86,13 @@ fn fill<const COUNT: usize>(h: &mut Hull, points: [Vec3; 3], radius: Real) {
     h.radius = radius;
 }
 
-/// The hull of element `e` of `model`.
+/// The hull of element `e` of `model` ([`write_hull`] into a new one).
 #[inline]
 pub fn hull(model: &Model, e: Element) -> Hull {
-    let p = &model.particles.pos;
-    match e {
-        Element::Particle(i) => {
-            Hull::new([p[i as usize]; 3], 1, model.particles.radius[i as usize])
-        }
-        Element::Connection(k) => {
-            let c = &model.connections[k as usize];
-            let (a, b) = (p[c.nodes[0] as usize], p[c.nodes[1] as usize]);
-            Hull::new([a, b, b], 2, c.radius)
-        }
-        Element::PFacet(k) => {
-            let f = &model.pfacets[k as usize];
-            Hull::new(f.nodes.map(|n| p[n as usize]), 3, f.radius)
-        }
-    }
+    let z = Vec3::zeros();
+    let mut h = Hull { points: [z; 3], count: 1, radius: 0.0, centroid: z, normal: z };
+    write_hull(model, e, &mut h);
+    h
 }
 
 /// Whether `a` and `b` are proven apart by a slab normal to `axis` (any non-zero vector):
