@@ -117,13 +117,10 @@ pub fn connections_polydata(sim: &Simulation) -> PolyData {
             ),
             DataArray::vectors(
                 "shear_force",
-                (0..connections.len()).map(|i| {
-                    // the shear force of the last update is the state's (zero before a step)
-                    match (force(i), links.state.get(i)) {
-                        (Some(_), Some(s)) => xyz(&s.shear_force),
-                        _ => [0.0; 3],
-                    }
-                }),
+                // the shear force the last update left (the link state's: a resumed run's
+                // too, carried by the checkpoint)
+                (0..connections.len())
+                    .map(|i| links.state.get(i).map_or([0.0; 3], |s| xyz(&s.shear_force))),
             ),
             DataArray::flags("broken", status.iter().map(|&s| u8::from(s == 2)).collect()),
             DataArray::integers("status", status),
