@@ -10,7 +10,7 @@ use flexdem::elements::builders::{
 };
 use flexdem::elements::{Dofs, MassLumping, Model};
 use flexdem::geom::{Real, Vec3};
-use flexdem::integrate::{Settings, Simulation, TimeStep};
+use flexdem::integrate::{Settings, Simulation, TimeStep, OFFSET_RELEASE_STEPS};
 
 /// A fold of two PFacets along the y axis (shared edge A–B), outer nodes at x = ∓1 and height
 /// `h` (h < 0: a ridge, h > 0: a valley), all blocked; a sphere of radius 0.1 pressed 1 mm into
@@ -46,14 +46,17 @@ fn fold() -> (Simulation, u32, [u32; 2]) {
 
 /// A sphere pressed into a fold that turns from a ridge (one contact, on the shared edge) to
 /// a valley (one contact per face): the owning features switch, and the force on the sphere
-/// does not jump (the edge contact is handed over to one face, the other face starts with no
-/// force); the outer nodes rise by 1e-8 m a step, so the force may change by ~1e-7 a step.
+/// does not jump at the switch (the edge contact is handed over to one face, the other face
+/// starts with no force); the outer nodes rise by 1e-8 m a step, so the force may change by
+/// ~1e-7 a step. After the switch the new face contact's offset is given back, 1/N of it a
+/// step (`OFFSET_RELEASE_STEPS`): the force then grows by at most 1/N of itself a step.
 #[test]
 fn a_fold_turning_concave_under_a_sphere_keeps_the_force_continuous() {
     let (mut sim, sphere, outer) = fold();
-    let mut previous: Option<Vec3> = None;
+    let mut previous: Option<(Vec3, Vec<_>)> = None;
     let mut counts = std::collections::BTreeSet::new();
-    let mut worst: Real = 0.0;
+    let (mut at_switch, mut between): (Real, Real) = (0.0, 0.0);
+    let mut switches = 0;
     for k in -20..=20 {
         let h = 1e-8 * k as Real;
         for &n in &outer {
@@ -64,17 +67,47 @@ fn a_fold_turning_concave_under_a_sphere_keeps_the_force_continuous() {
         sim.step().unwrap();
         let f = sim.forces()[sphere as usize];
         assert!(f.z > 0.0, "the fold pushes the sphere up: {f}");
-        if let Some(p) = previous {
-            worst = worst.max((f - p).norm() / p.norm());
+        let keys: Vec<_> = sim.contacts().iter().map(|c| c.key()).collect();
+        if let Some((p, before)) = &previous {
+            let change = (f - p).norm() / p.norm();
+            if *before != keys {
+                switches += 1;
+                at_switch = at_switch.max(change);
+            } else {
+                between = between.max(change);
+            }
         }
-        previous = Some(f);
+        previous = Some((f, keys));
         counts.insert(sim.contacts().len());
     }
     assert!(counts.contains(&1) && counts.contains(&2), "the features never switched: {counts:?}");
-    assert!(worst < 1e-6, "the force jumped by {worst:.3e} (relative) at a step");
+    assert!(switches > 0);
+    assert!(at_switch < 1e-6, "the force jumped by {at_switch:.3e} (relative) at a switch");
+    assert!(
+        between < 1.0 / OFFSET_RELEASE_STEPS + 1e-6,
+        "the force changed by {between:.3e} (relative) in a step between switches"
+    );
     // the sphere placed 1 mm deep is the one contact found late; the face that joins later
     // is not
     assert_eq!(sim.contacts_born_deep(), 1);
+    // held still: the offsets are given back, and the births count exactly the elastic
+    // energy that puts into the springs (the nodes are still: no work is done)
+    let (births, stored) = (sim.energy().contact_births, sim.energy().elastic_contacts);
+    assert!(sim.contacts().iter().any(|c| c.state.overlap_offset > 0.0));
+    for _ in 0..(20.0 * OFFSET_RELEASE_STEPS) as usize {
+        sim.step().unwrap();
+    }
+    for c in sim.contacts() {
+        assert!(
+            c.state.overlap_offset < 1e-8 * 1e-3,
+            "{:?} kept {}",
+            c.key(),
+            c.state.overlap_offset
+        );
+    }
+    let e = sim.energy();
+    let (booked, gained) = (e.contact_births - births, e.elastic_contacts - stored);
+    assert!(gained > 0.0 && (booked - gained).abs() < 1e-9 * gained, "{booked} vs {gained}");
 }
 
 /// The same fold as a valley 1 mm deep from the start (the sphere has one full contact on each
@@ -105,7 +138,8 @@ fn a_valley_flattening_under_a_sphere_releases_energy_and_counts_it() {
     assert!(one > 0.4 * both && one < 0.6 * both, "{one} of {both}");
     let e = sim.energy();
     assert!(e.contact_releases > 0.0, "{e:?}");
-    assert_eq!(e.contact_births, births);
+    // nothing but the release of the hand-over's offset, which is round-off here
+    assert!((e.contact_births - births).abs() < 1e-6 * e.elastic_contacts, "{e:?}");
     assert_eq!(sim.contacts_born_deep(), 2);
 }
 

@@ -64,10 +64,12 @@ pub struct FrictionalContact {
     pub normal: Vec3,
     /// Energy dissipated over the contact's life (`friction` and `viscous` are used here).
     pub dissipated: Dissipation,
-    /// Overlap offset δ₀ ≥ 0 (m): the normal force is `kn·(δ − δ₀)` (model: "contacts born
-    /// deep"). 0 for a contact found when it first touched; set when a touching changes the
-    /// features that own it, so that the force it carries does not jump (the engine's
-    /// hand-over), and kept for the contact's life, which keeps the law conservative.
+    /// Overlap offset δ₀ (m): the normal force is `kn·(δ − δ₀)` (docs/model.md §1, §2). 0 for
+    /// a contact found when it first touched; set when a touching changes the features that
+    /// own it, so that the force it carries does not jump (the engine's hand-over), then
+    /// given back over the next steps with its energy booked; for two intersecting faces it
+    /// also holds their motion along the normal (their geometric overlap stays r₁ + r₂), and
+    /// is negative when they are driven deeper than that.
     pub overlap_offset: Real,
     /// Force of the normal spring at the last update (N), `kn·(δ − δ₀)` (without the
     /// dashpot's): what the spring carries when the contact ends.

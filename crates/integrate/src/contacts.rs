@@ -14,6 +14,7 @@ use crate::contact_list::Contacts;
 use crate::dashpots::{dashpot_power, shear_exit};
 use crate::gather::{fits_codes, LoadIndex};
 use crate::neighbours::{merged, Pick, Sink};
+use crate::offsets::continued_overlap;
 use crate::pair_passes::PairScratch;
 use crate::parallel::{MIN_PARALLEL_CHEAP, MIN_PARALLEL_COSTLY};
 use crate::prefilter::{proven_apart, write_hull, Hull};
@@ -362,9 +363,10 @@ impl ContactPipeline {
     ///   touching moved to other features (face to edge to face, edge to faces at a fold, or
     ///   across an element between nearly parallel elements). The new contact takes its shear
     ///   force, normal (when within the contact's size: the same touching) and dissipation,
-    ///   and an overlap offset `δ₀ = δ_new − δ_old·kn_old/kn_new` (≥ 0), `δ_old` the ended
-    ///   contact's overlap (less its offset) continued to the current positions: the normal
-    ///   force does not jump across the switch, and so neither does the elastic energy;
+    ///   and an overlap offset `δ₀ = δ_new − δ_old·kn_old/kn_new`, `δ_old` the ended
+    ///   contact's overlap (less its offset) continued to now (`continued_overlap`): the
+    ///   normal force does not jump across the switch, and so neither does the elastic
+    ///   energy; the offset is given back over the next steps (`offsets.rs`);
     /// - **a split**: no ended contact to take over, but a contact of the same owners within
     ///   the elements' extent existed at the last step, and the new one is found deeper than
     ///   the approach of one step explains (`δ > u·dt`, `u` the approach speed): the touching
@@ -425,7 +427,7 @@ impl ContactPipeline {
                 taken[o] = true;
                 let before = &old[o];
                 let (_, _, g_old) = geometry(model, &k, before);
-                let carried = g_old.overlap - before.state.overlap_offset;
+                let carried = continued_overlap(before, &g_old, dt);
                 // the ended contact's spring leaves the balance as if it had ended ...
                 report.born_energy -= 0.5 * before.state.normal_force * carried;
                 let force = before.params.kn * carried.max(0.0);
@@ -455,8 +457,10 @@ impl ContactPipeline {
                 let continuous = (offset - before.state.overlap_offset).abs()
                     <= 1e-6 * (c.site1.radius + c.site2.radius)
                     && before.params.kn == c.params.kn;
+                // (negative when the new features are nearer than the force asks: given
+                // back over the next steps, `offsets.rs`)
                 c.state.overlap_offset =
-                    if continuous { before.state.overlap_offset } else { offset.max(0.0) };
+                    if continuous { before.state.overlap_offset } else { offset };
                 // ... and the new one enters it as if it were born: the two nearly cancel
                 report.born_energy += birth_jump(&c.params, &c.state, &g, dt);
                 continue;
@@ -487,7 +491,7 @@ impl ContactPipeline {
             let c = &old[o];
             contacts.ended_dissipation += c.state.dissipated.friction;
             let (_, _, g) = geometry(model, &k, c);
-            let now = g.overlap - c.state.overlap_offset;
+            let now = continued_overlap(c, &g, dt);
             // the spring leaves the balance: −½·F·δ_now (see above); ended by separating
             // (δ_now ≤ 0) that is put in, ended while compressed it is released
             let jump = -0.5 * c.state.normal_force * now;

@@ -29,6 +29,8 @@ pub struct Energy {
     /// time, positive for one found late, with an overlap one step of approach does not
     /// explain) and `−½·F·δ_now` per contact ended by separating (see
     /// `ContactPipeline::settle_births`). Collisions found on time add as much as they take.
+    /// Also the energy put into (or taken from) contact springs as their overlap offsets are
+    /// given back (`offsets.rs`, docs/model.md §2).
     pub contact_births: Real,
     /// Elastic energy given up by contacts that ended or were handed over while holding it
     /// (J).

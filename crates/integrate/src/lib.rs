@@ -17,6 +17,7 @@ mod integrator;
 mod links;
 mod measures;
 mod neighbours;
+mod offsets;
 mod pair_passes;
 mod parallel;
 mod pipeline;
@@ -44,6 +45,7 @@ pub use measures::{
     solid_fraction, wall_gap, wall_normal_stress,
 };
 pub use neighbours::{ContactKey, NeighbourList, PairContact};
+pub use offsets::OFFSET_RELEASE_STEPS;
 pub use pipeline::ForceHook;
 pub use pressure::{add_pressure_forces, pressure_node_force, Pressure};
 pub use region::Region;

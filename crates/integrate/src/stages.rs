@@ -8,6 +8,7 @@ use crate::energy::PendingWork;
 use crate::integrator::{leapfrog_step, Leapfrog, StepWork};
 use crate::links::LinkUpdate;
 use crate::neighbours::{merged_fresh, Pick};
+use crate::offsets::release_offsets;
 use crate::parallel::MIN_PARALLEL_CHEAP;
 use crate::pressure::add_pressure_forces;
 use crate::servo::steer_walls;
@@ -160,6 +161,12 @@ impl Simulation {
         self.state.energy.terms.contact_births += births.born_energy;
         self.state.energy.terms.contact_releases += births.released;
         self.state.contacts.born_deep += births.born_deep;
+        self.state.energy.terms.contact_births += release_offsets(
+            &mut self.state.contacts.list,
+            &self.pipeline.contacts.fresh,
+            &self.state.model,
+            dt,
+        );
         let pairs = self.pipeline.contacts.apply(
             &mut self.state.contacts,
             &self.state.model,

@@ -83,7 +83,8 @@ fn check_law(p: &FrictionalParams, st: &FrictionalContact, point: &Vec3) -> Resu
     if (st.normal.norm_squared() - 1.0).abs() > 1e-6 {
         return Err(format!("a normal of length {} (expected 1)", st.normal.norm()));
     }
-    if !non_negative(st.overlap_offset) {
+    // negative while two intersecting faces are driven deeper (model.md §1)
+    if !st.overlap_offset.is_finite() {
         return Err(format!("an overlap offset of {} m", st.overlap_offset));
     }
     Ok(())
