@@ -419,7 +419,12 @@ fn notes_text(m18: Real, m_lattice: Real, bending: &BendingResult, missed: bool)
          one was: a node resting on a fold lost its contact whenever an element holding it \
          reached deeper into the other fold an element's length away, and nodes sank through \
          the walls (the end turned 84.7 rad through the tube's own walls, with the winding's \
-         balance off by 6.1e-2). A touching is now one place (docs/model.md §2).",
+         balance off by 6.1e-2). A touching is now one place (docs/model.md §2), and until \
+         2026-12-02 walls still sank into each other behind the overlap offsets that keep a \
+         handed-over contact's force continuous, kept for the contact's life, and where \
+         PFacets intersect (their distance is 0 however deep): the offsets are now given \
+         back over 50 steps with their energy booked, and the overlap of intersecting faces \
+         follows their motion (docs/model.md §1, §2).",
         (m_lattice / m18 - 1.0) * 100.0
     );
     if let Some(end) = &bending.final_state {
