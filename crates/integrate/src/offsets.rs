@@ -1,12 +1,13 @@
 //! The release of overlap offsets (docs/model.md §2): a contact handed over with an offset δ₀
 //! carries less force than its depth asks, `kn·(δ − δ₀)`. The offset keeps the force
 //! continuous across the switch; kept for the contact's life it would let a touching sink
-//! through a wall that does not push back. It is given back over a few hundred steps, and
-//! the energy that puts into the spring is booked (`contact_births`), not hidden in the error.
+//! through a wall that does not push back. It is given back over some fifty steps, and the
+//! energy that puts into the spring is booked (`contact_births`), not hidden in the error.
+//! Also here: the incremental overlap of intersecting faces (docs/model.md §1) and how an
+//! ended contact's overlap is continued ([`continued_overlap`]).
 
 use crate::contact::{birth_jump, geometry, Contact};
-use flexdem_elements::virtual_sphere::ContactGeometry;
-use flexdem_elements::virtual_sphere::{Feature, Kinematics};
+use flexdem_elements::virtual_sphere::{ContactGeometry, Feature, Kinematics};
 use flexdem_elements::Model;
 use flexdem_geom::Real;
 
