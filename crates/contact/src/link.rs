@@ -25,7 +25,7 @@
 //! # Limits (eq 7) and failure
 //! - Plastic: tension capped at σn·A with the excess going into e_p (unloading is elastic);
 //!   |Fs| capped at Fn·tanφ + σs·A; |Mt| and |Mb| capped at their limits with the excess going
-//!   into the plastic rotation (stored in node 1's co-rotating frame, so it turns with the link).
+//!   into the plastic rotation (stored in node 1's body frame, so it turns with the link).
 //!   A plastic link never breaks.
 //! - Fragile: tension above σn·A breaks the link for good ([`LinkStatus::Broken`], all forces
 //!   zero from then on). A shear force above Fn·tanφ + σs·A **or a moment above its limit**
@@ -61,13 +61,10 @@ pub enum LinkKinematicsMode {
     Yade,
 }
 
-/// Constants of a beam link.
+/// Constants a link shares with every link of the same material, radius and kinematics
+/// (88 bytes; the engine keeps one per such group, see [`LinkSpring`] for the rest).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub struct LinkParams {
-    /// kn, ks, kb, kt (eq 8).
-    pub stiffness: LinkStiffness,
-    /// Rest length L0 (m).
-    pub rest_length: Real,
+pub struct LinkClass {
     /// Radius r of the connection (m).
     pub radius: Real,
     /// Limits of eq 7 and tanφ.
@@ -80,6 +77,45 @@ pub struct LinkParams {
     pub mode: LinkKinematicsMode,
 }
 
+impl LinkClass {
+    /// The constants of links of radius r made of material m: limits of eq 7 with R = r,
+    /// failure mode and moments flag of the material.
+    pub fn from_material(m: &Material, radius: Real, mode: LinkKinematicsMode) -> Self {
+        LinkClass {
+            radius,
+            strength: link_strength(m, radius),
+            failure: m.failure,
+            moments: m.moments,
+            mode,
+        }
+    }
+}
+
+/// The constants of one link that depend on its rest length (40 bytes).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct LinkSpring {
+    /// kn, ks, kb, kt (eq 8).
+    pub stiffness: LinkStiffness,
+    /// Rest length L0 (m).
+    pub rest_length: Real,
+}
+
+impl LinkSpring {
+    /// The springs of a link of radius r and rest length L0 made of material m (eq 8).
+    pub fn from_material(m: &Material, radius: Real, rest_length: Real) -> Self {
+        LinkSpring { stiffness: beam_link_stiffness(m, radius, rest_length), rest_length }
+    }
+}
+
+/// Every constant of one beam link: its class and its springs.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct LinkParams {
+    /// What it shares with links of the same material, radius and kinematics.
+    pub class: LinkClass,
+    /// Stiffnesses and rest length.
+    pub spring: LinkSpring,
+}
+
 impl LinkParams {
     /// A link of radius r and rest length L0 made of material m: stiffnesses of eq 8, limits of
     /// eq 7 with R = r, failure mode and moments flag of the material.
@@ -90,13 +126,8 @@ impl LinkParams {
         mode: LinkKinematicsMode,
     ) -> Self {
         LinkParams {
-            stiffness: beam_link_stiffness(m, radius, rest_length),
-            rest_length,
-            radius,
-            strength: link_strength(m, radius),
-            failure: m.failure,
-            moments: m.moments,
-            mode,
+            class: LinkClass::from_material(m, radius, mode),
+            spring: LinkSpring::from_material(m, radius, rest_length),
         }
     }
 }
@@ -127,26 +158,26 @@ pub enum LinkEvent {
     Separated,
 }
 
-/// State of a link, carried from step to step.
+/// State of a link, carried from step to step (120 bytes): what the update reads and writes,
+/// nothing else. The energy a link dissipates is returned by each update
+/// ([`LinkForces::dissipated`]) for the caller to sum.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct LinkState {
     /// Normal of the previous update (unit, node 1 → node 2).
     pub normal: Vec3,
     /// Shear force on node 2 (N), tangent to `normal`.
     pub shear_force: Vec3,
-    /// Orientation q1⁰ of node 1 when the link was made.
-    pub q1_ref: UnitQuaternion<Real>,
-    /// Orientation q2⁰ of node 2 when the link was made.
-    pub q2_ref: UnitQuaternion<Real>,
+    /// q2⁰⁻¹·q1⁰, from the nodes' orientations q1⁰, q2⁰ when the link was made: the relative
+    /// rotation (q2·q2⁰⁻¹)·(q1·q1⁰⁻¹)⁻¹ is q2·`rest_rotation`·q1⁻¹, two quaternion products
+    /// where the two references would take three.
+    pub rest_rotation: UnitQuaternion<Real>,
     /// Plastic elongation e_p (m): the normal force is kn·(L0 + e_p − L).
     pub plastic_elongation: Real,
-    /// Plastic relative rotation (rad), in node 1's co-rotating frame: the world vector is
-    /// (q1·q1⁰⁻¹)·`plastic_rotation`.
+    /// Plastic relative rotation (rad), in node 1's body frame: the world vector is
+    /// q1·`plastic_rotation`, so that it turns with the link.
     pub plastic_rotation: Vec3,
     /// Cohesive, frictional or broken.
     pub status: LinkStatus,
-    /// Energy dissipated over the link's life.
-    pub dissipated: Dissipation,
 }
 
 impl LinkState {
@@ -156,12 +187,10 @@ impl LinkState {
         LinkState {
             normal: (x2 - x1).try_normalize(0.0).unwrap_or_else(Vec3::x),
             shear_force: Vec3::zeros(),
-            q1_ref: q1,
-            q2_ref: q2,
+            rest_rotation: q2.inverse() * q1,
             plastic_elongation: 0.0,
             plastic_rotation: Vec3::zeros(),
             status: LinkStatus::Cohesive,
-            dissipated: Dissipation::default(),
         }
     }
 }
@@ -226,10 +255,7 @@ struct Trial {
 }
 
 /// One step of a beam link (eq 1, 2, 5–8; see the module documentation for the kinematics,
-/// limits and failure rules). Updates `state` and returns the forces and torques on both nodes.
-///
-/// Inlined into the links' loop, where only the fields of [`LinkLoad`] are kept: the rest is
-/// computed only for callers that read it.
+/// limits and failure rules), with its constants in one [`LinkParams`]: [`update_link_parts`].
 #[inline]
 pub fn update_link(
     params: &LinkParams,
@@ -237,10 +263,28 @@ pub fn update_link(
     kin: &LinkKinematics,
     dt: Real,
 ) -> LinkForces {
+    update_link_parts(&params.class, &params.spring, state, kin, dt)
+}
+
+/// One step of a beam link (eq 1, 2, 5–8; see the module documentation for the kinematics,
+/// limits and failure rules), with its constants in two parts: the `class` it shares with
+/// links of the same material and radius, and its own `spring`. Updates `state` and returns
+/// the forces and torques on both nodes.
+///
+/// Inlined into the links' loop, where only the fields of the engine's `LinkLoad` are kept:
+/// the rest is computed only for callers that read it.
+#[inline]
+pub fn update_link_parts(
+    class: &LinkClass,
+    spring: &LinkSpring,
+    state: &mut LinkState,
+    kin: &LinkKinematics,
+    dt: Real,
+) -> LinkForces {
     if state.status == LinkStatus::Broken {
         return LinkForces::default();
     }
-    let k = &params.stiffness;
+    let k = &spring.stiffness;
     let d = kin.x2 - kin.x1;
     let l = d.norm();
     // one division for n and α (a division is as slow as a square root)
@@ -250,8 +294,8 @@ pub fn update_link(
     let rotated = transport_tangent(state.shear_force, state.normal, n, spin * dt);
     let mut us = (kin.v2 - kin.v1) - (kin.w1 + kin.w2).cross(&n) * (0.5 * l);
     us -= n * n.dot(&us);
-    let alpha = match params.mode {
-        LinkKinematicsMode::Yade if l > 0.0 => 2.0 * params.radius * inv_l,
+    let alpha = match class.mode {
+        LinkKinematicsMode::Yade if l > 0.0 => 2.0 * class.radius * inv_l,
         _ => 1.0,
     };
     let ks = k.ks * alpha;
@@ -259,35 +303,40 @@ pub fn update_link(
     let trial = Trial {
         n,
         l,
-        fn_: k.kn * (params.rest_length + state.plastic_elongation - l),
+        fn_: k.kn * (spring.rest_length + state.plastic_elongation - l),
         fs: rotated - us * (ks * dt),
         ks,
     };
     match state.status {
-        LinkStatus::Cohesive => cohesive_step(params, state, kin, &trial),
-        _ => frictional_step(params, state, &trial, 0.0, false),
+        LinkStatus::Cohesive => cohesive_step(class, spring, state, kin, &trial),
+        _ => frictional_step(class, spring, state, &trial, 0.0, false),
     }
 }
 
 #[inline]
-fn cohesive_step(p: &LinkParams, s: &mut LinkState, kin: &LinkKinematics, t: &Trial) -> LinkForces {
-    let k = &p.stiffness;
+fn cohesive_step(
+    p: &LinkClass,
+    spring: &LinkSpring,
+    s: &mut LinkState,
+    kin: &LinkKinematics,
+    t: &Trial,
+) -> LinkForces {
+    let k = &spring.stiffness;
     let lim = &p.strength;
     let n = t.n;
-    // Moments (eq 5, 6) from the total relative rotation minus the plastic rotation.
-    let (mut mt, mut mb, theta, r1) = if p.moments {
-        let r1 = kin.q1 * s.q1_ref.inverse();
-        let r2 = kin.q2 * s.q2_ref.inverse();
-        let theta = rotation_vector(&(r2 * r1.inverse()));
+    // Moments (eq 5, 6) from the total relative rotation q2·q2⁰⁻¹·q1⁰·q1⁻¹ minus the plastic
+    // rotation.
+    let (mut mt, mut mb, theta) = if p.moments {
+        let theta = rotation_vector(&(kin.q2 * s.rest_rotation * kin.q1.inverse()));
         let el = if s.plastic_rotation == Vec3::zeros() {
             theta
         } else {
-            theta - r1 * s.plastic_rotation
+            theta - kin.q1 * s.plastic_rotation
         };
         let tw = n * n.dot(&el);
-        (tw * -k.kt, (el - tw) * -k.kb, theta, r1)
+        (tw * -k.kt, (el - tw) * -k.kb, theta)
     } else {
-        (Vec3::zeros(), Vec3::zeros(), Vec3::zeros(), UnitQuaternion::identity())
+        (Vec3::zeros(), Vec3::zeros(), Vec3::zeros())
     };
     // squared magnitudes: the square roots are taken only where a limit is reached
     let fs2 = t.fs.norm_squared();
@@ -307,7 +356,6 @@ fn cohesive_step(p: &LinkParams, s: &mut LinkState, kin: &LinkKinematics, t: &Tr
                 s.status = LinkStatus::Broken;
                 s.shear_force = Vec3::zeros();
                 diss.breakage = e_trial;
-                s.dissipated += diss;
                 return LinkForces {
                     dissipated: diss,
                     event: LinkEvent::BrokeInTension,
@@ -315,7 +363,7 @@ fn cohesive_step(p: &LinkParams, s: &mut LinkState, kin: &LinkKinematics, t: &Tr
                 };
             }
             fn_ = -tmax;
-            s.plastic_elongation = t.l - p.rest_length - tmax / k.kn;
+            s.plastic_elongation = t.l - spring.rest_length - tmax / k.kn;
             diss.plastic += cap_dissipation(-t.fn_, tmax, k.kn);
         }
     }
@@ -326,7 +374,7 @@ fn cohesive_step(p: &LinkParams, s: &mut LinkState, kin: &LinkKinematics, t: &Tr
     let bend_cap = lim.bending_moment.filter(|&c| p.moments && exceeds(mb2, c));
     if fragile && (shear_cap.is_some() || twist_cap.is_some() || bend_cap.is_some()) {
         s.status = LinkStatus::Frictional;
-        return frictional_step(p, s, t, e_trial, true);
+        return frictional_step(p, spring, s, t, e_trial, true);
     }
     let mut fs = t.fs;
     if let Some(c) = shear_cap {
@@ -347,10 +395,9 @@ fn cohesive_step(p: &LinkParams, s: &mut LinkState, kin: &LinkKinematics, t: &Tr
     if twist_cap.is_some() || bend_cap.is_some() {
         // New elastic rotation from the capped moments; the rest is plastic.
         let el = -(mt * inv(k.kt) + mb * inv(k.kb));
-        s.plastic_rotation = r1.inverse() * (theta - el);
+        s.plastic_rotation = kin.q1.inverse() * (theta - el);
     }
     s.shear_force = fs;
-    s.dissipated += diss;
     let capped = fn_ != t.fn_ || shear_cap.is_some() || twist_cap.is_some() || bend_cap.is_some();
     let elastic = if capped {
         spring_energy(fn_, k.kn)
@@ -368,20 +415,20 @@ fn cohesive_step(p: &LinkParams, s: &mut LinkState, kin: &LinkKinematics, t: &Tr
 /// `e_trial` minus what remains, is counted as breakage rather than friction).
 #[inline]
 fn frictional_step(
-    p: &LinkParams,
+    p: &LinkClass,
+    spring: &LinkSpring,
     s: &mut LinkState,
     t: &Trial,
     e_trial: Real,
     losing: bool,
 ) -> LinkForces {
-    let k = &p.stiffness;
+    let k = &spring.stiffness;
     let mut diss = Dissipation::default();
     let fs_trial_mag = t.fs.norm();
     if t.fn_ < 0.0 {
         s.status = LinkStatus::Broken;
         s.shear_force = Vec3::zeros();
         diss.breakage = if losing { e_trial } else { spring_energy(fs_trial_mag, t.ks) };
-        s.dissipated += diss;
         return LinkForces { dissipated: diss, event: LinkEvent::Separated, ..Default::default() };
     }
     let cap = t.fn_ * p.strength.tan_phi;
@@ -401,7 +448,6 @@ fn frictional_step(
         LinkEvent::None
     };
     s.shear_force = fs;
-    s.dissipated += diss;
     let z = Vec3::zeros();
     assemble(t.n, t.l, t.fn_, fs, z, z, elastic, diss, event)
 }

@@ -29,7 +29,7 @@ fn negative_or_absent_strengths_never_break() {
         let f = move2(&mut sim, Vec3::new(0.01, 0.01, 0.0), Vec3::new(0.1, 0.0, 0.2));
         assert_eq!(f.event, LinkEvent::None);
         assert_eq!(sim.s.status, LinkStatus::Cohesive);
-        let kn = sim.p.stiffness.kn;
+        let kn = sim.p.spring.stiffness.kn;
         let stretch = (sim.x[1] - sim.x[0]).norm() - L;
         assert!((f.normal_force + kn * stretch).abs() < 1e-9 * kn * stretch);
     }
@@ -40,7 +40,7 @@ fn fragile_tension_break_is_permanent() {
     let sigma_n = 1e5;
     let mut sim = sim_with(mat().with_tensile_strength(Some(sigma_n)));
     let limit = sigma_n * area();
-    let kn = sim.p.stiffness.kn;
+    let kn = sim.p.spring.stiffness.kn;
     let mut broke_at = None;
     for k in 1..=20 {
         let f = move2(&mut sim, Vec3::x() * 1e-5, Vec3::zeros());
@@ -125,7 +125,7 @@ fn fragile_moment_failure_loses_cohesion() {
     let sigma_n = 1e5;
     let mut sim = sim_with(mat().with_tensile_strength(Some(sigma_n)));
     let mt_lim = sigma_n * PI * R.powi(4) / 8.0 / R;
-    let kt = sim.p.stiffness.kt;
+    let kt = sim.p.spring.stiffness.kt;
     let steps = (mt_lim / kt / 1e-5).floor() as usize + 1;
     for k in 1..=steps {
         let f = move2(&mut sim, Vec3::zeros(), Vec3::x() * 1e-5);
@@ -148,7 +148,7 @@ fn plastic_tension_caps_unloads_elastically_and_dissipates() {
     let sigma_n = 1e5;
     let m = mat().with_tensile_strength(Some(sigma_n)).with_failure(FailureMode::Plastic);
     let mut sim = sim_with(m);
-    let (limit, kn) = (sigma_n * area(), sim.p.stiffness.kn);
+    let (limit, kn) = (sigma_n * area(), sim.p.spring.stiffness.kn);
     let du = 1e-6;
     for _ in 0..300 {
         let f = move2(&mut sim, Vec3::x() * du, Vec3::zeros());
@@ -158,7 +158,7 @@ fn plastic_tension_caps_unloads_elastically_and_dissipates() {
     let e_p = 300.0 * du - limit / kn;
     assert!((sim.s.plastic_elongation - e_p).abs() < 1e-9 * L);
     // Dissipation = cap × plastic elongation.
-    assert!((sim.s.dissipated.plastic - limit * e_p).abs() < 1e-6 * limit * e_p);
+    assert!((sim.dissipated.plastic - limit * e_p).abs() < 1e-6 * limit * e_p);
     // Unloading is elastic with slope kn, around the new rest length L0 + e_p.
     let f = move2(&mut sim, Vec3::x() * -2e-5, Vec3::zeros());
     assert!((f.normal_force - (-limit + kn * 2e-5)).abs() < 1e-6 * limit);
@@ -166,7 +166,7 @@ fn plastic_tension_caps_unloads_elastically_and_dissipates() {
     let f = move2(&mut sim, Vec3::x() * -back, Vec3::zeros());
     assert!(f.normal_force.abs() < 1e-6 * limit, "{}", f.normal_force);
     // The work done equals stored energy + dissipation.
-    let total = f.elastic_energy + sim.s.dissipated.total();
+    let total = f.elastic_energy + sim.dissipated.total();
     assert!((sim.work - total).abs() < 2e-2 * total, "{} vs {}", sim.work, total);
 }
 
@@ -178,7 +178,7 @@ fn plastic_shear_cap_and_elastic_unloading() {
         .with_failure(FailureMode::Plastic)
         .with_moments(false);
     let mut sim = sim_with(m);
-    let ks = sim.p.stiffness.ks;
+    let ks = sim.p.spring.stiffness.ks;
     let cap = sigma_s * area(); // Fn = 0: cap is the cohesive part only
     let dw = 1e-5;
     let n = 2 * (cap / ks / dw) as usize;
@@ -191,14 +191,14 @@ fn plastic_shear_cap_and_elastic_unloading() {
         assert!(f.shear_force.norm() <= cap * (1.0 + 1e-9));
     }
     // Fn < 0 here (the transverse motion stretches the link a little): the cap of eq 7.
-    let cap_now = sim.p.strength.shear_limit(sim.last.normal_force).unwrap();
+    let cap_now = sim.p.class.strength.shear_limit(sim.last.normal_force).unwrap();
     assert!(sim.last.normal_force < 0.0 && cap_now < cap);
     assert!((sim.last.shear_force.norm() - cap_now).abs() < 1e-9 * cap);
     // Unloading: slope ks, elastic (no new dissipation).
-    let d0 = sim.s.dissipated.plastic;
+    let d0 = sim.dissipated.plastic;
     let f = move2(&mut sim, Vec3::y() * -dw, Vec3::zeros());
     assert!((f.shear_force.norm() - (cap_now - ks * dw)).abs() < 1e-3 * cap);
-    assert_eq!(sim.s.dissipated.plastic, d0);
+    assert_eq!(sim.dissipated.plastic, d0);
     // Dissipation ≈ cap × slip distance (the first capped step slips only partly). The cap
     // shrinks a little while slipping (the link stretches), which releases up to
     // cap·(cap − cap_now)/ks more: bounds by both caps.
@@ -211,7 +211,7 @@ fn plastic_bending_cap_keeps_a_plastic_rotation() {
     let sigma_s = 1e4;
     let m = mat().with_shear_strength(Some(sigma_s)).with_failure(FailureMode::Plastic);
     let mut sim = sim_with(m);
-    let kb = sim.p.stiffness.kb;
+    let kb = sim.p.spring.stiffness.kb;
     let mb_lim = sigma_s * PI * R.powi(4) / 4.0 / R;
     // Rotate node 2 and node 1 by the same angle about z (pure bending at zero shear: the
     // (L/2)(ω1 + ω2) term is cancelled by a matching transverse motion of node 2).
@@ -224,10 +224,10 @@ fn plastic_bending_cap_keeps_a_plastic_rotation() {
     let theta = 2.0 * dth * n as Real;
     let theta_p = theta - mb_lim / kb;
     assert!((sim.s.plastic_rotation.z - theta_p).abs() < 1e-6 * theta_p);
-    assert!((sim.s.dissipated.plastic - mb_lim * theta_p).abs() < 1e-3 * mb_lim * theta_p);
+    assert!((sim.dissipated.plastic - mb_lim * theta_p).abs() < 1e-3 * mb_lim * theta_p);
     // Unloading by 1.5·Mlim/kb is elastic: the moment goes from −Mlim to +Mlim/2 with no new
     // dissipation.
-    let d0 = sim.s.dissipated.plastic;
+    let d0 = sim.dissipated.plastic;
     let back = 1.5 * mb_lim / kb;
     let m = 100;
     for _ in 0..m {
@@ -237,7 +237,7 @@ fn plastic_bending_cap_keeps_a_plastic_rotation() {
     }
     let mb = sim.last.bending_moment;
     assert!((mb.z - 0.5 * mb_lim).abs() < 1e-6 * mb_lim, "{mb}");
-    assert_eq!(sim.s.dissipated.plastic, d0);
+    assert_eq!(sim.dissipated.plastic, d0);
 }
 
 proptest! {
@@ -257,7 +257,7 @@ proptest! {
             .with_shear_strength(Some(sigma_s))
             .with_failure(failure);
         let mut sim = Sim::along(dir, &m, LinkKinematicsMode::Beam);
-        let lim = sim.p.strength;
+        let lim = sim.p.class.strength;
         let rank = |s: LinkStatus| match s {
             LinkStatus::Cohesive => 0,
             LinkStatus::Frictional => 1,
@@ -319,11 +319,11 @@ proptest! {
             let (v1, w1, v2, w2) = (l[0] * 2e-3 * L, l[1] * 2e-2, l[2] * 2e-3 * L, l[3] * 2e-2);
             for _ in 0..1000 {
                 let f = sim.step([v1, v2], [w1, w2], dt);
-                e_max = e_max.max(f.elastic_energy + sim.s.dissipated.total());
+                e_max = e_max.max(f.elastic_energy + sim.dissipated.total());
             }
         }
         let e = sim.last.elastic_energy;
-        let d = sim.s.dissipated.total();
+        let d = sim.dissipated.total();
         prop_assert!(sim.work >= e - 1e-2 * e_max, "work {} < E {}", sim.work, e);
         prop_assert!(sim.work <= e + d + 1e-2 * e_max, "work {} > E {} + D {}", sim.work, e, d);
     }

@@ -3,12 +3,14 @@
 //! order so that the result does not depend on the number of threads.
 
 use flexdem_contact::{
-    update_link, LinkEvent, LinkKinematics, LinkKinematicsMode, LinkParams, LinkState, LinkStatus,
+    update_link_parts, LinkClass, LinkEvent, LinkKinematics, LinkKinematicsMode, LinkSpring,
+    LinkState, LinkStatus,
 };
 use flexdem_elements::{Model, Particles};
 use flexdem_geom::{Real, Vec3};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
+use std::collections::HashMap;
 
 /// What one update of every link returns.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -17,7 +19,8 @@ pub struct LinkUpdate {
     pub events: LinkEvents,
     /// Elastic energy stored in the links after the update (J).
     pub elastic_energy: Real,
-    /// Energy the links have dissipated since they were made (J).
+    /// Energy the links dissipated in this update (J): plastic caps, slip after decohesion,
+    /// breakage.
     pub dissipated: Real,
 }
 
@@ -42,14 +45,21 @@ pub struct LinkLoad {
     pub elastic_energy: Real,
 }
 
-/// Every beam link: constants, state, and the forces of the last step.
+/// Every beam link: constants, state, and the forces of the last step. Per link, 252 bytes:
+/// nodes 8, class 4, springs 40, state 120, loads 88 (and 16 of the node → loads index); the
+/// constants links share (limits, radius, failure mode) are kept once per class.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct Links {
     /// The two nodes of link `i` (those of connection `i`).
     pub nodes: Vec<[u32; 2]>,
-    /// Constants (stiffness, rest length, limits).
-    pub params: Vec<LinkParams>,
-    /// State carried from step to step (shear force, reference orientations, status).
+    /// The constants shared by the links of one material and radius (limits, failure mode,
+    /// kinematics), once each.
+    pub classes: Vec<LinkClass>,
+    /// The class of link `i` (an index into `classes`).
+    pub class: Vec<u32>,
+    /// The stiffnesses and rest length of link `i`.
+    pub springs: Vec<LinkSpring>,
+    /// State carried from step to step (shear force, reference rotation, status).
     pub state: Vec<LinkState>,
     /// Loads of the last update.
     #[serde(skip)]
@@ -74,23 +84,33 @@ pub struct LinkEvents {
 
 impl Links {
     /// One link per connection of `model`, at rest in the current configuration, with the
-    /// material of the connection and the given shear kinematics.
+    /// material of the connection and the given shear kinematics. Links of the same material
+    /// and radius (to the bit) share one class.
     pub fn from_model(model: &Model, mode: LinkKinematicsMode) -> Self {
         let p = &model.particles;
+        let n = model.connections.len();
         let mut links = Links {
-            nodes: Vec::with_capacity(model.connections.len()),
-            params: Vec::with_capacity(model.connections.len()),
-            state: Vec::with_capacity(model.connections.len()),
+            nodes: Vec::with_capacity(n),
+            classes: Vec::new(),
+            class: Vec::with_capacity(n),
+            springs: Vec::with_capacity(n),
+            state: Vec::with_capacity(n),
             loads: Vec::new(),
             node_offsets: Vec::new(),
             node_loads: Vec::new(),
             chunk_sums: Vec::new(),
         };
+        let mut class_of: HashMap<(u32, u64), u32> = HashMap::new();
         for c in &model.connections {
             let [a, b] = c.nodes.map(|n| n as usize);
             let material = &model.materials[c.material as usize];
+            let class = *class_of.entry((c.material, c.radius.to_bits())).or_insert_with(|| {
+                links.classes.push(LinkClass::from_material(material, c.radius, mode));
+                (links.classes.len() - 1) as u32
+            });
             links.nodes.push(c.nodes);
-            links.params.push(LinkParams::from_material(material, c.radius, c.rest_length, mode));
+            links.class.push(class);
+            links.springs.push(LinkSpring::from_material(material, c.radius, c.rest_length));
             links.state.push(LinkState::new(p.pos[a], p.pos[b], p.ori[a], p.ori[b]));
         }
         links.loads = vec![LinkLoad::default(); links.nodes.len()];
@@ -121,9 +141,9 @@ impl Links {
     }
 
     /// Whether these links (read from a checkpoint, say) fit `model`: one link per
-    /// connection, on the connection's nodes, with as many constants and states, and the
-    /// node → loads index that [`Links::from_model`] builds for them (every offset and load
-    /// code in range). [`Links::update`] and [`Links::add_loads`] index the particles and the
+    /// connection, on the connection's nodes, with as many classes (each in range), springs
+    /// and states, and the node → loads index that [`Links::from_model`] builds for them
+    /// (every offset and load code in range). [`Links::update`] and [`Links::add_loads`] index the particles and the
     /// forces with these numbers without further checks. `model` must have been validated
     /// (`Model::validate`: connection node ids in range).
     pub fn check_against(&self, model: &Model) -> bool {
@@ -132,12 +152,20 @@ impl Links {
         let same_nodes = self.nodes.len() == n_links
             && self.nodes.iter().zip(&model.connections).all(|(l, c)| *l == c.nodes)
             && self.nodes.iter().flatten().all(|&n| (n as usize) < n_particles);
-        if !(same_nodes && self.params.len() == n_links && self.state.len() == n_links) {
+        let classes_in_range = self.class.len() == n_links
+            && self.class.iter().all(|&c| (c as usize) < self.classes.len());
+        if !(same_nodes
+            && classes_in_range
+            && self.springs.len() == n_links
+            && self.state.len() == n_links)
+        {
             return false;
         }
         let mut fresh = Links {
             nodes: self.nodes.clone(),
-            params: Vec::new(),
+            classes: Vec::new(),
+            class: Vec::new(),
+            springs: Vec::new(),
             state: Vec::new(),
             loads: Vec::new(),
             node_offsets: Vec::new(),
@@ -170,14 +198,16 @@ impl Links {
         if self.loads.len() != self.nodes.len() {
             self.loads = vec![LinkLoad::default(); self.nodes.len()];
         }
+        let classes = &self.classes;
         (
             self.nodes.par_chunks(CHUNK),
-            self.params.par_chunks(CHUNK),
+            self.class.par_chunks(CHUNK),
+            self.springs.par_chunks(CHUNK),
             self.state.par_chunks_mut(CHUNK),
             self.loads.par_chunks_mut(CHUNK),
         )
             .into_par_iter()
-            .map(|(nodes, params, state, loads)| {
+            .map(|(nodes, class, springs, state, loads)| {
                 let mut sums = LinkUpdate::default();
                 for k in 0..nodes.len() {
                     let [a, b] = nodes[k].map(|n| n as usize);
@@ -191,14 +221,15 @@ impl Links {
                         q1: p.ori[a],
                         q2: p.ori[b],
                     };
-                    let f = update_link(&params[k], &mut state[k], &kin, dt);
+                    let class = &classes[class[k] as usize];
+                    let f = update_link_parts(class, &springs[k], &mut state[k], &kin, dt);
                     match f.event {
                         LinkEvent::BrokeInTension | LinkEvent::Separated => sums.events.broken += 1,
                         LinkEvent::LostCohesion => sums.events.decohered += 1,
                         LinkEvent::None => {}
                     }
                     sums.elastic_energy += f.elastic_energy;
-                    sums.dissipated += state[k].dissipated.total();
+                    sums.dissipated += f.dissipated.total();
                     loads[k] = LinkLoad {
                         force_on_2: f.force_on_2,
                         lever_torque: f.lever_torque,
@@ -272,7 +303,7 @@ mod tests {
     fn altered_links_do_not_fit() {
         let model = chain_model();
         let good = Links::from_model(&model, LinkKinematicsMode::Beam);
-        let alterations: [fn(&mut Links); 7] = [
+        let alterations: [fn(&mut Links); 9] = [
             |l| l.node_loads[3] = 1000,
             |l| l.node_loads.swap(0, 1),
             |l| l.node_offsets[2] = 99,
@@ -280,6 +311,8 @@ mod tests {
             |l| l.nodes[1] = [0, 4],
             |l| l.nodes[0] = [0, 77],
             |l| l.state.truncate(2),
+            |l| l.class[2] = 1,
+            |l| l.springs.truncate(1),
         ];
         for (k, alter) in alterations.iter().enumerate() {
             let mut links = good.clone();

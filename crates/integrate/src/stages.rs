@@ -50,7 +50,7 @@ impl Simulation {
             let d = p.pos[b] - p.pos[a];
             let len = d.norm();
             let n = if len > 0.0 { d / len } else { Vec3::x() };
-            let s = &self.state.links.params[l].stiffness;
+            let s = &self.state.links.springs[l].stiffness;
             for i in [a, b] {
                 k.add(i, &n, s.kn, s.ks, 0.5 * len, s.kt, s.kb);
             }
@@ -394,7 +394,7 @@ impl Simulation {
         e.kinetic_rotation = work.kinetic_rotation;
         e.elastic_links = links.elastic_energy;
         (e.elastic_contacts, e.friction) = self.state.contacts.energy_sums();
-        e.links_dissipated = links.dissipated;
+        e.links_dissipated += links.dissipated;
         e.gravity_work += self.state.energy.pending.gravity;
         e.load_work += self.state.energy.pending.load + load_work;
         e.boundary_work += self.state.energy.pending.boundary + work.boundary;

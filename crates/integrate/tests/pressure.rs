@@ -204,7 +204,7 @@ fn energy_balance_closes_for_a_ringing_pressurised_shell() {
 ///   on the stretched area: virtual work over a dilation, 3pV₀(1 + ε)² = ε·Σ kₙL₀².
 fn uniform_dilation_strain(sim: &Simulation, p: Real, v0: Real) -> Real {
     let k_l2: Real =
-        sim.links().params.iter().map(|l| l.stiffness.kn * l.rest_length * l.rest_length).sum();
+        sim.links().springs.iter().map(|l| l.stiffness.kn * l.rest_length * l.rest_length).sum();
     let mut eps: Real = 0.0;
     for _ in 0..50 {
         eps = 3.0 * p * v0 * (1.0 + eps).powi(2) / k_l2;
@@ -224,7 +224,7 @@ fn damped_shell_comes_to_rest_at_the_membrane_theory_radius() {
     let v0 = volume(&sim);
     let theory = uniform_dilation_strain(&sim, p, v0);
     // the equilateral-lattice formula at the mean link length, for the record
-    let links = &sim.links().params;
+    let links = &sim.links().springs;
     let mean_length = links.iter().map(|l| l.rest_length).sum::<Real>() / links.len() as Real;
     let ea = YOUNG * PI * NODE_RADIUS * NODE_RADIUS;
     let et = 2.0 * ea / (3.0_f64.sqrt() * mean_length);

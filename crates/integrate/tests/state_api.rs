@@ -123,6 +123,10 @@ fn a_model_edit_that_ends_contacts_and_links_keeps_the_balance() {
     assert_eq!(after.contact_releases, e.contact_releases + e.elastic_contacts);
     assert_eq!(after.links_dissipated, e.links_dissipated + e.elastic_links);
     assert!((after.balance() - balance).abs() <= 1e-12 * balance.abs().max(e.stored()));
+    // the next step adds the new links' dissipation (none: elastic) to what was booked; it
+    // used to set the sum to the new links' own, dropping the released energy
+    sim.step().unwrap();
+    assert_eq!(sim.energy().links_dissipated, after.links_dissipated);
 }
 
 #[test]
