@@ -12,7 +12,7 @@ use crate::contact::{
 };
 use crate::contact_list::Contacts;
 use crate::dashpots::{dashpot_power, shear_exit};
-use crate::gather::{fits_codes, LoadIndex};
+use crate::gather::{fits_codes, load_nodes, LoadIndex, NO_NODE};
 use crate::neighbours::{merged, Pick, Sink};
 use crate::offsets::continued_overlap;
 use crate::pair_passes::PairScratch;
@@ -44,6 +44,9 @@ pub(crate) struct ContactPipeline {
     dashpot_loads: Vec<[NodeLoad; 6]>,
     /// Buffers reused from step to step, so that detection does not allocate once warm.
     scratch: Scratch,
+    /// Per contact, the particles its loads go to, slot by slot (`NO_NODE` for a slot not
+    /// used): what the index of `gather.rs` reads, written where the loads are made.
+    load_nodes: Vec<[u32; 6]>,
     /// Where each particle's loads are, for their parallel sum (`gather.rs`).
     load_index: LoadIndex,
     connection_nodes: Vec<[u32; 2]>,
@@ -66,6 +69,8 @@ struct Scratch {
     survivors: Vec<Option<Touching>>,
     all: Vec<Touching>,
     previous: Vec<Contact>,
+    /// Per touching (in key order), the index of the last step's contact of its key.
+    matched: Vec<Option<u32>>,
     taken: Vec<bool>,
     ended: Vec<usize>,
     by_owners: Vec<usize>,
@@ -321,33 +326,49 @@ impl ContactPipeline {
         );
         order.par_sort_unstable();
 
-        // 3. match with the last step's contacts (both sorted by key)
+        // 3. match with the last step's contacts (both sorted by key): each touching's old
+        // contact (the first of its key) found by merging the two lists, the new list made
+        // in parallel (the copies of the old contacts are most of the work), then the old
+        // ones taken and the fresh ones noted in order
         std::mem::swap(&mut contacts.list, &mut scratch.previous);
-        contacts.list.clear();
         let old = &scratch.previous;
+        let matched = &mut scratch.matched;
+        matched.clear();
+        let mut k = 0;
+        for &(f1, f2, _) in order.iter() {
+            while k < old.len() && old[k].key() < (f1, f2) {
+                k += 1;
+            }
+            matched.push((k < old.len() && old[k].key() == (f1, f2)).then_some(k as u32));
+        }
+        let all = &scratch.all;
+        order
+            .par_iter()
+            .zip(scratch.matched.par_iter())
+            .with_min_len(MIN_PARALLEL_COSTLY)
+            .map(|(&(_, _, index), &k)| {
+                let t = &all[index as usize];
+                match k {
+                    Some(k) => {
+                        let mut c = old[k as usize].clone();
+                        c.site1 = t.candidate.site1;
+                        c.site2 = t.candidate.site2;
+                        c
+                    }
+                    None => new_contact(model, t),
+                }
+            })
+            .collect_into_vec(&mut contacts.list);
         let taken = &mut scratch.taken;
         taken.clear();
         taken.resize(old.len(), false);
         let mut fresh = std::mem::take(&mut self.fresh);
         fresh.clear();
-        let mut k = 0;
-        for (n, &(f1, f2, index)) in order.iter().enumerate() {
-            let t = &all[index as usize];
-            let key = (f1, f2);
-            while k < old.len() && old[k].key() < key {
-                k += 1;
+        for (n, &k) in scratch.matched.iter().enumerate() {
+            match k {
+                Some(k) => taken[k as usize] = true,
+                None => fresh.push(n),
             }
-            let c = if k < old.len() && old[k].key() == key {
-                taken[k] = true;
-                let mut c = old[k].clone();
-                c.site1 = t.candidate.site1;
-                c.site2 = t.candidate.site2;
-                c
-            } else {
-                fresh.push(n);
-                new_contact(model, t)
-            };
-            contacts.list.push(c);
         }
         self.fresh = fresh;
         self.settle_births(contacts, model, dt)
@@ -529,13 +550,15 @@ impl ContactPipeline {
         let k = Kinematics { pos: &p.pos, vel: &p.vel, ang_vel: &p.ang_vel };
         let zero = [NodeLoad { node: 0, force: Vec3::zeros(), torque: Vec3::zeros() }; 6];
         self.loads.resize(contacts.list.len(), zero);
-        let update = |c: &mut Contact, loads: &mut [NodeLoad; 6]| {
+        self.load_nodes.resize(contacts.list.len(), [NO_NODE; 6]);
+        let update = |c: &mut Contact, loads: &mut [NodeLoad; 6], nodes: &mut [u32; 6]| {
             let (vs1, vs2, g) = geometry(model, &k, c);
             let f = update_frictional_contact(&c.params, &mut c.state, &law_kinematics(&g), dt);
             let l1 = distribute_force(&c.site1, &p.pos, &vs1.center, &g.point, &(-f.force_on_2));
             let l2 = distribute_force(&c.site2, &p.pos, &vs2.center, &g.point, &f.force_on_2);
             loads[..3].copy_from_slice(&l1);
             loads[3..].copy_from_slice(&l2);
+            *nodes = load_nodes(c.site1.node_count(), c.site2.node_count(), loads);
             c.forces = f;
             c.point = g.point;
             (vs1, vs2, g)
@@ -547,10 +570,11 @@ impl ContactPipeline {
                 .list
                 .par_iter_mut()
                 .zip(self.loads.par_iter_mut())
+                .zip(self.load_nodes.par_iter_mut())
                 .zip(self.dashpot_loads.par_iter_mut())
                 .with_min_len(MIN_PARALLEL_COSTLY)
-                .for_each(|((c, loads), dashpot)| {
-                    let (vs1, vs2, g) = update(c, loads);
+                .for_each(|(((c, loads), nodes), dashpot)| {
+                    let (vs1, vs2, g) = update(c, loads, nodes);
                     let f = c.forces.dashpot_force;
                     if f == Vec3::zeros() {
                         *dashpot = zero;
@@ -566,9 +590,10 @@ impl ContactPipeline {
                 .list
                 .par_iter_mut()
                 .zip(self.loads.par_iter_mut())
+                .zip(self.load_nodes.par_iter_mut())
                 .with_min_len(MIN_PARALLEL_COSTLY)
-                .for_each(|(c, loads)| {
-                    update(c, loads);
+                .for_each(|((c, loads), nodes)| {
+                    update(c, loads, nodes);
                 });
         }
         // in key order, the free spheres' contacts among the others
@@ -608,7 +633,7 @@ impl ContactPipeline {
             // each particle's loads in key order, in parallel over the particles (`gather.rs`)
             let index = &mut self.load_index;
             index.index_pairs(&contacts.pairs, p.len());
-            index.index_general(&contacts.list, &self.loads, p.len());
+            index.index_general(&self.load_nodes, p.len());
             index.add_loads(
                 force,
                 torque,

@@ -39,6 +39,23 @@ pub(crate) struct LoadIndex {
 }
 
 /// Whether `len` entries fit the `u32` codes of the index (`8·n + slot`, `2·n + side`).
+/// A slot of a contact's six node loads that no particle receives (`load_nodes`).
+pub(crate) const NO_NODE: u32 = u32::MAX;
+
+/// The particles a contact's six node loads go to: the first `n1` slots (site 1's nodes) and
+/// slots 3 to 3 + `n2` (site 2's), [`NO_NODE`] for the others.
+#[inline]
+pub(crate) fn load_nodes(n1: usize, n2: usize, loads: &[NodeLoad; 6]) -> [u32; 6] {
+    std::array::from_fn(|slot| {
+        let used = if slot < 3 { slot < n1 } else { slot - 3 < n2 };
+        if used {
+            loads[slot].node
+        } else {
+            NO_NODE
+        }
+    })
+}
+
 pub(crate) fn fits_codes(general: usize, pairs: usize) -> bool {
     general < (u32::MAX / 8) as usize && pairs < (u32::MAX / 2) as usize
 }
@@ -68,22 +85,22 @@ impl LoadIndex {
         self.pairs_built_for = built_for;
     }
 
-    /// Indexes the loads of the general contacts `list` (their `loads`, as `apply` wrote
-    /// them: body 1's first `n1`, body 2's from slot 3) for `particles` particles.
-    pub(crate) fn index_general(
-        &mut self,
-        list: &[Contact],
-        loads: &[[NodeLoad; 6]],
-        particles: usize,
-    ) {
-        if list.is_empty() {
+    /// Indexes the loads of the general contacts from the particles each contact's six slots
+    /// go to (`load_nodes`, as `apply` wrote them: body 1's first `n1`, body 2's from slot 3,
+    /// [`NO_NODE`] for the others) for `particles` particles.
+    pub(crate) fn index_general(&mut self, load_nodes: &[[u32; 6]], particles: usize) {
+        if load_nodes.is_empty() {
             self.general_offsets.clear();
             self.general_entries.clear();
             return;
         }
-        let entries = list.iter().zip(loads).enumerate().flat_map(|(n, (c, l))| {
-            let (n1, n2) = (c.site1.node_count(), c.site2.node_count());
-            (0..n1).chain(3..3 + n2).map(move |slot| (l[slot].node, 8 * n as u32 + slot as u32))
+        // (24 bytes per contact read, where the contacts and their loads are 680)
+        let entries = load_nodes.iter().enumerate().flat_map(|(n, nodes)| {
+            let code = 8 * n as u32;
+            (0..6u32).filter_map(move |slot| {
+                let node = nodes[slot as usize];
+                (node != NO_NODE).then_some((node, code + slot))
+            })
         });
         counting_sort(
             entries,
@@ -171,8 +188,11 @@ fn counting_sort(
     for (i, _) in items.clone() {
         count[i as usize + 1] += 1;
     }
-    for i in 0..particles {
-        count[i + 1] += count[i];
+    // (a running sum: count[0] is 0)
+    let mut sum = 0;
+    for c in count.iter_mut() {
+        sum += *c;
+        *c = sum;
     }
     offsets.clear();
     offsets.extend_from_slice(count);
