@@ -67,7 +67,8 @@ struct Scratch {
     found: Vec<Vec<ElementCandidate>>,
     keys: Vec<(u32, u32)>,
     survivors: Vec<Option<Touching>>,
-    all: Vec<Touching>,
+    /// The walls' touchings (they come after the survivors in the key order's indices).
+    walls: Vec<Touching>,
     previous: Vec<Contact>,
     /// Per touching (in key order), the index of the last step's contact of its key.
     matched: Vec<Option<u32>>,
@@ -311,19 +312,22 @@ impl ContactPipeline {
             .collect_into_vec(&mut scratch.survivors);
 
         // walls touch every particle on their side (one contact per wall and particle)
-        let all = &mut scratch.all;
-        all.clear();
-        all.extend(scratch.survivors.iter().flatten());
-        all.extend(collider.wall_pairs.iter().filter_map(|&(w, i)| wall_touching(model, w, i)));
+        let walls = &mut scratch.walls;
+        walls.clear();
+        walls.extend(collider.wall_pairs.iter().filter_map(|&(w, i)| wall_touching(model, w, i)));
         // sorted by key through a small (key, index) list: the touchings themselves are large
-        // and moving them in the sort cost more than the sort's comparisons
+        // and moving them in the sort cost more than the sort's comparisons. Index n < S
+        // (S survivors) is survivor n, S + m wall touching m: as if both were in one list
+        // (the survivors left out and no copy)
+        let survivors = &scratch.survivors;
+        let first_wall = survivors.len() as u32;
         let order = &mut scratch.order;
         order.clear();
+        let key = |t: &Touching, n: u32| (t.candidate.site1.feature, t.candidate.site2.feature, n);
         order.extend(
-            all.iter()
-                .enumerate()
-                .map(|(n, t)| (t.candidate.site1.feature, t.candidate.site2.feature, n as u32)),
+            survivors.iter().enumerate().filter_map(|(n, t)| Some(key(t.as_ref()?, n as u32))),
         );
+        order.extend(walls.iter().enumerate().map(|(m, t)| key(t, first_wall + m as u32)));
         order.par_sort_unstable();
 
         // 3. match with the last step's contacts (both sorted by key): each touching's old
@@ -341,13 +345,17 @@ impl ContactPipeline {
             }
             matched.push((k < old.len() && old[k].key() == (f1, f2)).then_some(k as u32));
         }
-        let all = &scratch.all;
+        let (walls, survivors) = (&scratch.walls, &scratch.survivors);
+        let touching_at = |n: u32| match survivors.get(n as usize) {
+            Some(t) => t.as_ref().expect("a survivor"),
+            None => &walls[n as usize - survivors.len()],
+        };
         order
             .par_iter()
             .zip(scratch.matched.par_iter())
             .with_min_len(MIN_PARALLEL_COSTLY)
             .map(|(&(_, _, index), &k)| {
-                let t = &all[index as usize];
+                let t = touching_at(index);
                 match k {
                     Some(k) => {
                         let mut c = old[k as usize].clone();
