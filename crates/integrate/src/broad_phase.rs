@@ -24,8 +24,6 @@ pub struct BroadPhase {
     extents: Vec<Real>,
     /// Where each cell's entries start, then their end.
     starts: Vec<usize>,
-    /// Each cell's range of entries.
-    buckets: Vec<(usize, usize)>,
 }
 
 /// Cell coordinates of a point for cells of size `h` anchored at `origin`.
@@ -114,40 +112,40 @@ impl BroadPhase {
                 .chain(std::iter::once(entries.len())),
         );
         let chunk = (starts.len() / (4 * rayon::current_num_threads()).max(1)).max(64);
-        self.buckets.clear();
-        self.buckets.extend(starts.windows(2).map(|w| (w[0], w[1])));
-        let bucket_ranges = &self.buckets;
-        let used = bucket_ranges.len().div_ceil(chunk);
+        // bucket b is entries[starts[b]..starts[b + 1]]; chunk c holds buckets c·chunk to
+        // (c + 1)·chunk
+        let buckets = starts.len() - 1;
+        let starts = &self.starts;
+        let used = buckets.div_ceil(chunk);
         if self.chunks.len() < used {
             self.chunks.resize_with(used, Vec::new);
         }
-        self.chunks[..used].par_iter_mut().zip(bucket_ranges.par_chunks(chunk)).for_each(
-            |(out, ranges)| {
-                out.clear();
-                for &(s, e) in ranges {
-                    let key = entries[s].0;
-                    for a in s..e {
-                        let i = entries[a].1;
-                        let bi = &boxes[i as usize];
-                        for &(_, j) in &entries[a + 1..e] {
-                            let bj = &boxes[j as usize];
-                            if !bi.intersects(bj) {
-                                continue;
-                            }
-                            // report only in the cell of the intersection's minimum corner
-                            let corner = bi.mins.sup(&bj.mins);
-                            if cell_key(cell_of(&corner, &origin, inv_h)) != key {
-                                continue;
-                            }
-                            let (p, q) = if i < j { (i, j) } else { (j, i) };
-                            if accept(p, q) {
-                                out.push((p, q));
-                            }
+        self.chunks[..used].par_iter_mut().enumerate().for_each(|(c, out)| {
+            out.clear();
+            for b in c * chunk..((c + 1) * chunk).min(buckets) {
+                let (s, e) = (starts[b], starts[b + 1]);
+                let key = entries[s].0;
+                for a in s..e {
+                    let i = entries[a].1;
+                    let bi = &boxes[i as usize];
+                    for &(_, j) in &entries[a + 1..e] {
+                        let bj = &boxes[j as usize];
+                        if !bi.intersects(bj) {
+                            continue;
+                        }
+                        // report only in the cell of the intersection's minimum corner
+                        let corner = bi.mins.sup(&bj.mins);
+                        if cell_key(cell_of(&corner, &origin, inv_h)) != key {
+                            continue;
+                        }
+                        let (p, q) = if i < j { (i, j) } else { (j, i) };
+                        if accept(p, q) {
+                            out.push((p, q));
                         }
                     }
                 }
-            },
-        );
+            }
+        });
         for c in &self.chunks[..used] {
             pairs.extend_from_slice(c);
         }
