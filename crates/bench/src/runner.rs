@@ -209,10 +209,10 @@ pub fn run_case(
             integration: after.integration.saturating_sub(before.integration),
             bookkeeping: after.bookkeeping.saturating_sub(before.bookkeeping),
         },
-        contacts: sim.contacts().len(),
+        contacts: sim.contact_count(),
         memory_bytes,
         probe: case.probe(&sim),
-        checksum: state_checksum(sim.model(), sim.contacts().len()),
+        checksum: state_checksum(sim.model(), sim.contact_count()),
     })
 }
 
