@@ -23,6 +23,7 @@
 
 mod case;
 mod error;
+pub mod heap;
 pub mod procfs;
 pub mod report;
 pub mod runner;
@@ -30,6 +31,7 @@ pub mod scenes;
 
 pub use case::{Case, FILE_WARMUP_STEPS};
 pub use error::BenchError;
+pub use heap::{heap_bytes, set_heap_probe};
 pub use runner::{run_case, run_plan, state_checksum, BenchResult, Plan, PlanRow, StepChoice};
 pub use scenes::SceneKind;
 

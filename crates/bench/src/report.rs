@@ -90,7 +90,7 @@ warmup_steps,steps,dt_s,build_s,wall_s,cpu_s,ms_per_step,ns_per_element_step,ste
 steps_per_cpu_s,\
 collision_ms_per_step,contacts_ms_per_step,links_ms_per_step,integration_ms_per_step,\
 collision_pct,contacts_pct,links_pct,integration_pct,other_pct,contacts,rss_delta_bytes,\
-bytes_per_element,probe,probe_value,checksum,vs_first_threads";
+bytes_per_element,probe,probe_value,checksum,vs_first_threads,heap_delta_bytes";
 
 /// One CSV line for `row` (no newline): the columns of [`CSV_HEADER`]; an unknown memory
 /// or a missing probe is an empty field, the checksum is hexadecimal.
@@ -126,6 +126,7 @@ pub fn csv_row(row: &PlanRow) -> String {
     fields.push(r.probe.map_or(String::new(), |(_, v)| format!("{v:.9e}")));
     fields.push(format!("{:016x}", r.checksum));
     fields.push(verdict(row.same_as_first).to_string());
+    fields.push(r.heap_bytes.map_or(String::new(), |b| b.to_string()));
     fields.join(",")
 }
 

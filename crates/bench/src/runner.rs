@@ -2,6 +2,7 @@
 //! asked size, and report the time per step, its split over the engine's stages, the memory
 //! and a checksum of the final state.
 
+use crate::heap::heap_bytes;
 use crate::procfs::{cpu_time, resident_memory};
 use crate::{BenchError, Case, SceneKind};
 use flexdem_elements::Model;
@@ -74,6 +75,10 @@ pub struct BenchResult {
     /// Resident memory added by building the simulation and warming it up: `VmRSS` after
     /// the warm-up minus `VmRSS` before the build (None where /proc is missing).
     pub memory_bytes: Option<u64>,
+    /// Heap added by building the simulation and warming it up: the bytes allocated after
+    /// the warm-up minus those before the build, where the binary counts them
+    /// ([`crate::heap`]; None elsewhere). What the scene holds, state and kept buffers.
+    pub heap_bytes: Option<u64>,
     /// A scene-specific final value, named (see [`Case::probe`]).
     pub probe: Option<(&'static str, Real)>,
     /// FNV-1a hash of the bits of every particle's position, velocity, orientation and
@@ -131,9 +136,10 @@ impl BenchResult {
         [p[0], p[1], p[2], p[3], (100.0 - p.iter().sum::<Real>()).max(0.0)]
     }
 
-    /// Resident memory per element (bytes), see [`BenchResult::memory_bytes`].
+    /// Memory per element (bytes): the heap's ([`BenchResult::heap_bytes`]) where it is
+    /// counted, else the resident memory's ([`BenchResult::memory_bytes`]).
     pub fn bytes_per_element(&self) -> Option<Real> {
-        self.memory_bytes.map(|b| b as Real / self.elements().max(1) as Real)
+        self.heap_bytes.or(self.memory_bytes).map(|b| b as Real / self.elements().max(1) as Real)
     }
 }
 
@@ -163,6 +169,7 @@ pub fn run_case(
     let failed =
         |source| BenchError::Simulation { scene: case.name(), size: case.size(), threads, source };
     let rss_before = resident_memory();
+    let heap_before = heap_bytes();
     let start = Instant::now();
     let mut sim = pool.install(|| case.simulation(threads))?;
     let build_time = start.elapsed();
@@ -178,6 +185,7 @@ pub fn run_case(
         (Some(a), Some(b)) => Some(b.current.saturating_sub(a.current)),
         _ => None,
     };
+    let heap_bytes = heap_before.zip(heap_bytes()).map(|(a, b)| b.saturating_sub(a));
     let steps = steps.steps(warmup_per_step).max(1);
     let before = *sim.timers();
     let cpu_before = cpu_time();
@@ -211,6 +219,7 @@ pub fn run_case(
         },
         contacts: sim.contact_count(),
         memory_bytes,
+        heap_bytes,
         probe: case.probe(&sim),
         checksum: state_checksum(sim.model(), sim.contact_count()),
     })

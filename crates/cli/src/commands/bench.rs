@@ -25,8 +25,11 @@ the tube; membrane and packing 20), then times the steps in a rayon pool of the 
 Columns: ms/step; ns/elem-step with elements = particles (nodes and spheres) + connections +
 PFacets; steps/s; cpu%: process CPU time / wall time (about 100 per thread when the run had
 its cores: lower means the machine is shared); coll%, cont%, link%, intg%, rest%: share of the
-collision, contacts, links and integration stages and of the rest; contacts at the end; B/elem: resident memory per element (VmRSS after
-the warm-up minus VmRSS before the build); vs 1st thr: whether the final state is
+collision, contacts, links and integration stages and of the rest; contacts at the end; B/elem:
+heap per element (the bytes allocated after the warm-up minus those before the build, counted
+by flexdem's allocator: the scene's state and the buffers kept from step to step; the CSV
+also has the resident memory's delta, which the allocator's reuse makes unreliable); vs 1st
+thr: whether the final state is
 bit-identical to the first thread count's (the command fails if one is DIFFERENT).
 The CSV also has each stage's ms/step, dt, build time and the state checksum.")]
 pub struct BenchArgs {
