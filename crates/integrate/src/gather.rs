@@ -38,7 +38,6 @@ pub(crate) struct LoadIndex {
     count: Vec<u32>,
 }
 
-/// Whether `len` entries fit the `u32` codes of the index (`8·n + slot`, `2·n + side`).
 /// A slot of a contact's six node loads that no particle receives (`load_nodes`).
 pub(crate) const NO_NODE: u32 = u32::MAX;
 
@@ -56,6 +55,7 @@ pub(crate) fn load_nodes(n1: usize, n2: usize, loads: &[NodeLoad; 6]) -> [u32; 6
     })
 }
 
+/// Whether `len` entries fit the `u32` codes of the index (`8·n + slot`, `2·n + side`).
 pub(crate) fn fits_codes(general: usize, pairs: usize) -> bool {
     general < (u32::MAX / 8) as usize && pairs < (u32::MAX / 2) as usize
 }

@@ -45,7 +45,7 @@ pub struct LinkLoad {
     pub elastic_energy: Real,
 }
 
-/// Every beam link: constants, state, and the forces of the last step. Per link, 252 bytes:
+/// Every beam link: constants, state, and the forces of the last step. Per link, 260 bytes:
 /// nodes 8, class 4, springs 40, state 120, loads 88 (and 16 of the node → loads index); the
 /// constants links share (limits, radius, failure mode) are kept once per class.
 #[derive(Clone, Debug, Serialize, Deserialize)]
@@ -288,6 +288,21 @@ mod tests {
         let points = straight_line(Vec3::zeros(), Vec3::x(), 4).unwrap();
         chain(&mut model, &points, &StructureOptions::new("c", 0.01, mat)).unwrap();
         model
+    }
+
+    /// The sizes the layout's documentation states (a field added to the hot path shows here).
+    #[test]
+    fn a_link_holds_the_bytes_documented() {
+        use std::mem::size_of;
+        let per_link = size_of::<[u32; 2]>()
+            + size_of::<u32>()
+            + size_of::<LinkSpring>()
+            + size_of::<LinkState>()
+            + size_of::<LinkLoad>();
+        assert_eq!(
+            (size_of::<LinkSpring>(), size_of::<LinkState>(), size_of::<LinkLoad>(), per_link),
+            (40, 120, 88, 260)
+        );
     }
 
     #[test]
