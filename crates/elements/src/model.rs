@@ -136,6 +136,15 @@ impl Model {
         Ok(())
     }
 
+    /// Gives back the memory the model's arrays hold beyond their length (a built model has
+    /// up to half of each unused; nothing is added to it while it runs).
+    pub fn shrink_to_fit(&mut self) {
+        self.particles.shrink_to_fit();
+        self.connections.shrink_to_fit();
+        self.pfacets.shrink_to_fit();
+        self.walls.shrink_to_fit();
+    }
+
     /// Whether two elements of structures `sa` and `sb` are parts of one structure whose
     /// self-contact is off (so they never pair).
     pub fn self_contact_off(&self, sa: StructureId, sb: StructureId) -> bool {

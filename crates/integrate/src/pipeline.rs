@@ -27,7 +27,8 @@ pub(crate) struct Pipeline {
     pub(crate) force: Vec<Vec3>,
     /// Total torque on each particle at the last step.
     pub(crate) torque: Vec<Vec3>,
-    /// Force of the imposed loads and the hook on each particle (for their work).
+    /// Force of the imposed loads and the hook on each particle (for their work); empty
+    /// until some load acts.
     pub(crate) external_force: Vec<Vec3>,
     /// Torque of the imposed loads and the hook on each particle.
     pub(crate) external_torque: Vec<Vec3>,
@@ -51,8 +52,8 @@ impl Pipeline {
             contacts: ContactPipeline::new(&state.model, &state.contacts),
             force: vec![Vec3::zeros(); n],
             torque: vec![Vec3::zeros(); n],
-            external_force: vec![Vec3::zeros(); n],
-            external_torque: vec![Vec3::zeros(); n],
+            external_force: Vec::new(),
+            external_torque: Vec::new(),
             walls: WallLoads {
                 force: vec![Vec3::zeros(); state.model.walls.len()],
                 stiffness: vec![0.0; state.model.walls.len()],

@@ -70,6 +70,7 @@ impl Simulation {
 
     /// A simulation of `state` with a fresh pipeline (no checks: see `new` and `from_state`).
     fn assemble(mut state: State) -> Self {
+        state.model.shrink_to_fit();
         state.links.loads = vec![Default::default(); state.links.len()];
         let pipeline = Pipeline::new(&state);
         Simulation { state, pipeline }

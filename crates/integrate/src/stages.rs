@@ -202,8 +202,12 @@ impl Simulation {
             return 0.0;
         }
         let t0 = self.pipeline.timers.start();
-        self.pipeline.external_force.iter_mut().for_each(|f| *f = Vec3::zeros());
-        self.pipeline.external_torque.iter_mut().for_each(|t| *t = Vec3::zeros());
+        // zeroed, and sized here: a scene without loads holds no memory for them
+        let n = self.state.model.particles.len();
+        for sums in [&mut self.pipeline.external_force, &mut self.pipeline.external_torque] {
+            sums.clear();
+            sums.resize(n, Vec3::zeros());
+        }
         for load in &self.state.loads {
             let s = load.ramp.factor(self.state.clock.time);
             for &i in &load.particles {
