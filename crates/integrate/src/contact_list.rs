@@ -84,18 +84,18 @@ impl Contacts {
     pub(crate) fn for_each_on_wall(&self, mut f: impl FnMut(u32, &Vec3, Real, Real)) {
         let g = self.list.partition_point(|c| !matches!(c.key().0, Feature::Wall(_)));
         for pick in merged_from(&self.list, &self.pairs, g, self.pairs.first_wall()) {
-            let (key, forces, params) = match pick {
+            let (key, force, normal_force, kn) = match pick {
                 Pick::General(n) => {
                     let c = &self.list[n];
-                    (c.key(), &c.forces, &c.params)
+                    (c.key(), c.forces.force_on_2, c.forces.normal_force, c.params.kn)
                 }
                 Pick::Pair(n) => {
                     let (key, c) = self.pairs.get(n);
-                    (*key, &c.forces, &c.params)
+                    (*key, c.force_on_2(), c.applied.normal_force, c.params.kn)
                 }
             };
             if let Feature::Wall(w) = key.0 {
-                f(w, &forces.force_on_2, forces.normal_force, params.kn);
+                f(w, &force, normal_force, kn);
             }
         }
     }

@@ -620,23 +620,20 @@ impl ContactPipeline {
             // contacts of smaller keys (the same sums, in the same order, as below)
             let general = &contacts.list;
             let mut g = 0;
-            let damped = self.damped;
             let report =
-                contacts.pairs.update_in_order(model, dt, damped, &mut self.pairs, ended, |e| {
-                    match e {
-                        Sink::Before(key) => {
-                            while g < general.len() && general[g].key() < *key {
-                                general_loads(g).for_each(&mut add);
-                                g += 1;
-                            }
+                contacts.pairs.update_in_order(model, dt, &mut self.pairs, ended, |e| match e {
+                    Sink::Before(key) => {
+                        while g < general.len() && general[g].key() < *key {
+                            general_loads(g).for_each(&mut add);
+                            g += 1;
                         }
-                        Sink::Load(l) => add(l),
                     }
+                    Sink::Load(l) => add(l),
                 });
             (g..general.len()).for_each(|n| general_loads(n).for_each(&mut add));
             return report;
         }
-        let report = contacts.pairs.update(model, dt, self.damped, &mut self.pairs, ended);
+        let report = contacts.pairs.update(model, dt, &mut self.pairs, ended);
         if fits_codes(contacts.list.len(), contacts.pairs.keys().len()) {
             // each particle's loads in key order, in parallel over the particles (`gather.rs`)
             let index = &mut self.load_index;

@@ -44,7 +44,7 @@ pub use measures::{
     deviator_stress, love_weber_stress, mean_stress, membrane_sample_volume, normal_force,
     solid_fraction, wall_gap, wall_normal_stress,
 };
-pub use neighbours::{ContactKey, NeighbourList, PairContact};
+pub use neighbours::{AppliedForce, ContactKey, NeighbourList, PairContact};
 pub use offsets::OFFSET_RELEASE_STEPS;
 pub use pipeline::ForceHook;
 pub use pressure::{add_pressure_forces, pressure_node_force, Pressure};

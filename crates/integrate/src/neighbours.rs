@@ -19,7 +19,8 @@ use crate::contact::{
 };
 use crate::dashpots::shear_exit;
 use flexdem_contact::{
-    update_frictional_contact, ContactForces, FrictionalContact, FrictionalParams,
+    spring_energy, spring_energy_squared, update_frictional_contact, ContactForces,
+    FrictionalContact, FrictionalParams,
 };
 use flexdem_elements::virtual_sphere::{ContactGeometry, Feature, Kinematics, NodeLoad, Site};
 use flexdem_elements::{Model, Particles};
@@ -30,18 +31,72 @@ use serde::{Deserialize, Serialize};
 pub type ContactKey = (Feature, Feature);
 
 /// The state of a touching pair: what a [`Contact`] holds less what the key says (the sites
-/// and the owners).
+/// and the owners), and of the law's output only the force it applied (200 bytes where a
+/// [`Contact`] is 344: the rest of [`ContactForces`] is made from it when asked,
+/// [`PairContact::forces`]).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct PairContact {
     /// Stiffnesses, friction and dashpots.
     pub params: FrictionalParams,
     /// Shear force, last normal, dissipation.
     pub state: FrictionalContact,
-    /// Forces of the last update.
+    /// The force of the last update (not saved: the next update makes it).
     #[serde(skip)]
-    pub forces: ContactForces,
+    pub applied: AppliedForce,
     /// Contact point at the last update.
     pub point: Vec3,
+}
+
+/// The force a pair contact's last update applied, as the law gave it
+/// ([`update_frictional_contact`]'s `normal_force`, `shear_force` and `sliding`).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct AppliedForce {
+    /// Normal force Fn, the normal dashpot's included; compression positive.
+    pub normal_force: Real,
+    /// Tangential force on body 2 (spring and dashpot, capped by Coulomb).
+    pub shear_force: Vec3,
+    /// The tangential force was capped by Coulomb.
+    pub sliding: bool,
+}
+
+impl PairContact {
+    /// Elastic energy of the springs after the last update, `(kn·δ)²/(2kn) + |Fs|²/(2ks)`
+    /// from the state: the law's `elastic_energy`, by the same operations (the same bits).
+    #[inline]
+    pub fn elastic_energy(&self) -> Real {
+        spring_energy(self.state.normal_force, self.params.kn)
+            + spring_energy_squared(self.state.shear_force.norm_squared(), self.params.ks)
+    }
+
+    /// Total force of the last update on body 2, `Fn·n + Fs` (the law's `force_on_2`, by the
+    /// same operations: the normal is the one the update stored).
+    #[inline]
+    pub fn force_on_2(&self) -> Vec3 {
+        self.state.normal * self.applied.normal_force + self.applied.shear_force
+    }
+
+    /// The forces of the last update as the law returned them, made from the applied force
+    /// and the state: the forces and the elastic energy exactly; the dashpots' part as
+    /// `(Fn − kn·δ)·n + (Fs − Fs,spring)` (the law's to round-off; zero without dashpots);
+    /// the update's own dissipation is not kept (zero here: the contact's lifetime friction
+    /// and viscous dissipation are in `state.dissipated`).
+    pub fn forces(&self) -> ContactForces {
+        let (a, s) = (&self.applied, &self.state);
+        let dashpot_force = if self.params.is_damped() {
+            s.normal * (a.normal_force - s.normal_force) + (a.shear_force - s.shear_force)
+        } else {
+            Vec3::zeros()
+        };
+        ContactForces {
+            normal_force: a.normal_force,
+            shear_force: a.shear_force,
+            force_on_2: self.force_on_2(),
+            dashpot_force,
+            elastic_energy: self.elastic_energy(),
+            dissipated: Default::default(),
+            sliding: a.sliding,
+        }
+    }
 }
 
 /// The candidate pairs of free spheres (with free spheres, then with walls), sorted by key,
@@ -117,6 +172,23 @@ impl Default for PairOutcome {
     }
 }
 
+/// What the law gave a pair that touches after its step, besides its loads: its elastic
+/// energy, and its dashpots' force when they pushed.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct LawOut {
+    pub(crate) elastic: Real,
+    pub(crate) dashpot: Option<DashpotPush>,
+}
+
+/// The dashpots' force alone on body 2 at an update (body 1 has the opposite), its moments
+/// about the two bodies' centres, and the law's count of its dissipation.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct DashpotPush {
+    pub(crate) force: Vec3,
+    pub(crate) moments: [Vec3; 2],
+    pub(crate) viscous: Real,
+}
+
 /// The sites of the contact of `key` (a free sphere's radius from the model).
 pub(crate) fn sites(model: &Model, key: &ContactKey) -> (Site, Site) {
     let r = &model.particles.radius;
@@ -171,7 +243,7 @@ impl NeighbourList {
             owners: owners(key),
             params: c.params,
             state: c.state.clone(),
-            forces: c.forces,
+            forces: c.forces(),
             point: c.point,
         })
     }
@@ -271,20 +343,20 @@ pub(crate) fn apart(p: &Particles, key: &ContactKey) -> bool {
     }
 }
 
-/// One pair's step (see [`NeighbourList::update`]); with `dashpot`, the moments of its
-/// dashpots' force alone about the bodies' centres go there when they pushed (left as they
-/// were otherwise); with `spare`, an ended contact's box goes there and a new contact takes
-/// one from there if it can.
+/// One pair's step (see [`NeighbourList::update`]); what the law gave a pair that touches
+/// after it goes to `law`; with `spare`, an ended contact's box goes there and a new contact
+/// takes one from there if it can.
 #[allow(clippy::vec_box, reason = "the boxes are what is kept, to serve again")]
+#[allow(clippy::too_many_arguments, reason = "one pair's inputs and its two outputs")]
 pub(crate) fn step_pair(
     model: &Model,
     k: &Kinematics<'_>,
     key: &ContactKey,
     slot: &mut Option<Box<PairContact>>,
     dt: Real,
-    dashpot: Option<&mut [Vec3; 2]>,
     mut spare: Option<&mut Vec<Box<PairContact>>>,
     out: &mut PairOutcome,
+    law: &mut LawOut,
 ) {
     // the hot case, a sphere–sphere contact that goes on: one distance, and no candidate,
     // sites or owners (the general path below computes the same numbers: `Candidate`'s
@@ -294,7 +366,7 @@ pub(crate) fn step_pair(
         let (i, j) = (i as usize, j as usize);
         if let Some(g) = sphere_geometry(p, i, j, &c.state.normal).filter(|g| g.overlap > 0.0) {
             let nodes = [i as u32, j as u32];
-            out.loads = apply_law(c, &g, nodes, [p.pos[i], p.pos[j]], dt, dashpot);
+            out.loads = apply_law(c, &g, nodes, [p.pos[i], p.pos[j]], dt, law);
             return;
         }
     }
@@ -323,7 +395,7 @@ pub(crate) fn step_pair(
             let made = PairContact {
                 params: c.params,
                 state: c.state,
-                forces: ContactForces::default(),
+                applied: AppliedForce::default(),
                 point: c.point,
             };
             *slot = Some(match spare.as_mut().and_then(|s| s.pop()) {
@@ -378,14 +450,15 @@ pub(crate) fn step_pair(
             }
         };
         let nodes = [site1.nodes[0], site2.nodes[0]];
-        out.loads = apply_law(c, &g, nodes, [center1, center2], dt, dashpot);
+        out.loads = apply_law(c, &g, nodes, [center1, center2], dt, law);
     }
 }
 
 /// The contact law of a pair in contact, at geometry `g`, and the loads on its two bodies
 /// (`nodes`, with their `centers`): a particle's site takes the whole force, and its moment
-/// about the centre (`distribute_force` with the weight 1). With `dashpot`, the moments of the
-/// dashpots' force alone (the forces are −fd on body 1 and fd on body 2), when they pushed.
+/// about the centre (`distribute_force` with the weight 1). Its elastic energy goes to `law`,
+/// and when its dashpots pushed, their force alone (−fd on body 1, fd on body 2) with its
+/// moments about the centres.
 #[inline(always)]
 fn apply_law(
     c: &mut PairContact,
@@ -393,7 +466,7 @@ fn apply_law(
     nodes: [u32; 2],
     centers: [Vec3; 2],
     dt: Real,
-    dashpot: Option<&mut [Vec3; 2]>,
+    law: &mut LawOut,
 ) -> [NodeLoad; 2] {
     let f = update_frictional_contact(&c.params, &mut c.state, &law_kinematics(g), dt);
     let on_1 = -f.force_on_2;
@@ -406,10 +479,17 @@ fn apply_law(
         },
     ];
     let fd = f.dashpot_force;
-    if let Some(d) = dashpot.filter(|_| fd != Vec3::zeros()) {
-        *d = [(g.point - centers[0]).cross(&(-fd)), (g.point - centers[1]).cross(&fd)];
-    }
-    c.forces = f;
+    law.elastic = f.elastic_energy;
+    law.dashpot = (fd != Vec3::zeros()).then(|| DashpotPush {
+        force: fd,
+        moments: [(g.point - centers[0]).cross(&(-fd)), (g.point - centers[1]).cross(&fd)],
+        viscous: f.dissipated.viscous,
+    });
+    c.applied = AppliedForce {
+        normal_force: f.normal_force,
+        shear_force: f.shear_force,
+        sliding: f.sliding,
+    };
     c.point = g.point;
     loads
 }
@@ -540,14 +620,14 @@ mod tests {
         // the 4 to 5 candidates per sphere of a packing: 24 bytes each; the 1.5 to 2
         // touching ones: a contact each besides (its size known: a change shows here)
         assert_eq!(size_of::<ContactKey>() + size_of::<Option<Box<PairContact>>>(), 24);
-        assert_eq!(size_of::<PairContact>(), 288);
+        assert_eq!(size_of::<PairContact>(), 200);
     }
 
     fn contact(point: Real) -> PairContact {
         PairContact {
             params: FrictionalParams { kn: 1.0, ks: 0.5, tan_phi: 0.3, cn: 0.0, ct: 0.0 },
             state: FrictionalContact::new(Vec3::z()),
-            forces: ContactForces::default(),
+            applied: AppliedForce::default(),
             point: Vec3::repeat(point),
         }
     }

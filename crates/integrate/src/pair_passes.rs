@@ -6,7 +6,7 @@
 
 use crate::contact::BirthReport;
 use crate::dashpots::pair_dashpot_power;
-use crate::neighbours::{apart, step_pair, NeighbourList, PairContact, PairOutcome, Sink};
+use crate::neighbours::{apart, step_pair, LawOut, NeighbourList, PairContact, PairOutcome, Sink};
 use flexdem_elements::virtual_sphere::{Feature, Kinematics, NodeLoad};
 use flexdem_elements::Model;
 use flexdem_geom::{Real, Vec3};
@@ -23,14 +23,13 @@ struct Pushed {
 }
 
 impl Pushed {
-    /// The record of pair `index` if its dashpots pushed (`moments` as `step_pair` wrote them).
-    fn of(index: usize, c: &PairContact, moments: &[Vec3; 2]) -> Option<Pushed> {
-        let force = c.forces.dashpot_force;
-        (force != Vec3::zeros()).then_some(Pushed {
+    /// The record of pair `index` if its dashpots pushed (as `step_pair` told in `law`).
+    fn of(index: usize, law: &LawOut) -> Option<Pushed> {
+        law.dashpot.map(|d| Pushed {
             index: index as u32,
-            force,
-            moments: *moments,
-            viscous: c.forces.dissipated.viscous,
+            force: d.force,
+            moments: d.moments,
+            viscous: d.viscous,
         })
     }
 }
@@ -74,8 +73,10 @@ impl ChunkSums {
         self.ended_dissipation += o.ended_dissipation;
     }
 
-    pub(crate) fn add_touching(&mut self, c: &PairContact) {
-        self.elastic += c.forces.elastic_energy;
+    /// Adds a touching pair's energy: its elastic energy `elastic` (its law's, or
+    /// [`PairContact::elastic_energy`], the same bits) and its friction over its life.
+    pub(crate) fn add_touching(&mut self, c: &PairContact, elastic: Real) {
+        self.elastic += elastic;
         self.friction += c.state.dissipated.friction;
     }
 
@@ -114,24 +115,16 @@ struct ChunkBook {
 
 impl ChunkBook {
     /// Books the step of pair `n`: its outcome `o`, and when it touches after the step
-    /// (`contact`), its energy and, with `moments` (a contact may have dashpots), the record
-    /// of its dashpots if they pushed.
-    fn record(
-        &mut self,
-        n: usize,
-        o: &PairOutcome,
-        contact: Option<&PairContact>,
-        moments: Option<&[Vec3; 2]>,
-    ) {
+    /// (`contact`), its energy and, when its dashpots pushed, their record (from `law`, what
+    /// its law gave).
+    fn record(&mut self, n: usize, o: &PairOutcome, contact: Option<&PairContact>, law: &LawOut) {
         self.sums.add_outcome(o);
         if o.fresh {
             self.fresh.push(n);
         }
         if let Some(c) = contact {
-            self.sums.add_touching(c);
-            if let Some(m) = moments {
-                self.pushed.extend(Pushed::of(n, c, m));
-            }
+            self.sums.add_touching(c, law.elastic);
+            self.pushed.extend(Pushed::of(n, law));
         }
     }
 }
@@ -146,11 +139,6 @@ pub(crate) struct PairScratch {
     /// Per candidate pair, where its outcome is in its chunk's list at the last parallel
     /// update (written for the pairs it stepped only).
     position: Vec<u32>,
-    /// With dashpots and more than one thread (`update`'s `damped`), one per candidate pair:
-    /// the moments of its dashpots' force alone about the two bodies' centres (body 1's,
-    /// body 2's), for their power after the kick (`dashpots::pair_dashpot_power`); written
-    /// only for the touching pairs whose dashpots pushed (the others are never read).
-    dashpot: Vec<[Vec3; 2]>,
     /// The boxes of contacts that ended, for the next births (one thread): a birth takes one
     /// instead of allocating.
     #[allow(clippy::vec_box, reason = "the boxes are what is kept, to serve again")]
@@ -197,16 +185,14 @@ impl NeighbourList {
     /// general pipeline makes it (`contacts::new_contact`) with its birth accounted for; an
     /// ended one's friction, elastic and shear energy accounted for; then the contact law
     /// and the node loads of every touching pair, into the scratch's chunks (the outcomes of
-    /// the pairs that are not far apart, in order, per chunk), and when `damped` (a contact
-    /// may have dashpots) the moments of the dashpots' force alone and the records of the
-    /// pairs whose dashpots pushed. `dt` is the step just done (the contact law's and the
-    /// births' step). Returns what the births and ends moved the energy balance by, and adds
-    /// the ended pairs' friction to `ended_dissipation`.
+    /// the pairs that are not far apart, in order, per chunk), with the records of the pairs
+    /// whose dashpots pushed. `dt` is the step just done (the contact law's and the births'
+    /// step). Returns what the births and ends moved the energy balance by, and adds the
+    /// ended pairs' friction to `ended_dissipation`.
     pub(crate) fn update(
         &mut self,
         model: &Model,
         dt: Real,
-        damped: bool,
         scratch: &mut PairScratch,
         ended_dissipation: &mut Real,
     ) -> BirthReport {
@@ -214,41 +200,26 @@ impl NeighbourList {
         let k = Kinematics { pos: &p.pos, vel: &p.vel, ang_vel: &p.ang_vel };
         let used = self.keys.len().div_ceil(PAIR_CHUNK);
         scratch.position.resize(self.keys.len(), 0);
-        if damped {
-            scratch.dashpot.resize(self.keys.len(), [Vec3::zeros(); 2]);
-        } else {
-            scratch.dashpot.clear();
-        }
-        let dashpot_chunks = scratch.dashpot.par_chunks_mut(PAIR_CHUNK);
-        // (without dashpots there is no moment to keep: empty chunks, never read)
-        let no_dashpots = (0..used).into_par_iter().map(|_| &mut [][..]);
-        let moments: rayon::iter::Either<_, _> = if damped {
-            rayon::iter::Either::Left(dashpot_chunks)
-        } else {
-            rayon::iter::Either::Right(no_dashpots)
-        };
         let chunks = chunks_for(&mut scratch.chunks, self.keys.len());
         self.keys
             .par_chunks(PAIR_CHUNK)
             .zip(self.contacts.par_chunks_mut(PAIR_CHUNK))
             .zip(scratch.position.par_chunks_mut(PAIR_CHUNK))
             .zip(chunks.par_iter_mut())
-            .zip(moments)
             .enumerate()
-            .for_each(|(c, ((((keys, slots), positions), out), dashpots))| {
+            .for_each(|(c, (((keys, slots), positions), out))| {
                 let base = c * PAIR_CHUNK;
                 for (i, (key, slot)) in keys.iter().zip(slots.iter_mut()).enumerate() {
                     if slot.is_none() && apart(p, key) {
                         continue;
                     }
-                    let d = dashpots.get_mut(i);
                     // the outcome written where it is kept (no copy of it)
                     positions[i] = out.outcomes.len() as u32;
                     out.outcomes.push(((base + i) as u32, PairOutcome::default()));
                     let o = &mut out.outcomes.last_mut().expect("just pushed").1;
-                    step_pair(model, &k, key, slot, dt, d, None, o);
-                    let moments = if damped { dashpots.get(i) } else { None };
-                    out.book.record(base + i, o, slot.as_deref(), moments);
+                    let mut law = LawOut::default();
+                    step_pair(model, &k, key, slot, dt, None, o, &mut law);
+                    out.book.record(base + i, o, slot.as_deref(), &law);
                 }
             });
         let (report, total) = scratch.totals(used, ended_dissipation);
@@ -258,13 +229,12 @@ impl NeighbourList {
 
     /// [`NeighbourList::update`] in one pass on this thread, giving `sink` each touching
     /// pair's key (`Sink::Before`), then its node loads (`Sink::Load`), in key order: the
-    /// loads are summed as they come (no buffer), with the same results (and, when `damped`,
-    /// the records of the pairs whose dashpots pushed, as `update` keeps them).
+    /// loads are summed as they come (no buffer), with the same results (and the records of
+    /// the pairs whose dashpots pushed, as `update` keeps them).
     pub(crate) fn update_in_order(
         &mut self,
         model: &Model,
         dt: Real,
-        damped: bool,
         scratch: &mut PairScratch,
         ended_dissipation: &mut Real,
         mut sink: impl FnMut(Sink<'_>),
@@ -280,11 +250,10 @@ impl NeighbourList {
                 continue;
             }
             let out = &mut chunks[n / PAIR_CHUNK];
-            let mut moments = [Vec3::zeros(); 2];
-            let dashpot = if damped { Some(&mut moments) } else { None };
             let mut o = PairOutcome::default();
-            step_pair(model, &k, key, slot, dt, dashpot, Some(&mut *spare), &mut o);
-            out.book.record(n, &o, slot.as_deref(), damped.then_some(&moments));
+            let mut law = LawOut::default();
+            step_pair(model, &k, key, slot, dt, Some(&mut *spare), &mut o, &mut law);
+            out.book.record(n, &o, slot.as_deref(), &law);
             if slot.is_some() {
                 sink(Sink::Before(key));
                 let first = usize::from(matches!(key.0, Feature::Wall(_)));
@@ -363,7 +332,7 @@ impl NeighbourList {
         let mut total = ChunkSums::default();
         for chunk in self.contacts.chunks(PAIR_CHUNK) {
             let mut sums = ChunkSums::default();
-            chunk.iter().flatten().for_each(|c| sums.add_touching(c));
+            chunk.iter().flatten().for_each(|c| sums.add_touching(c, c.elastic_energy()));
             total.elastic += sums.elastic;
             total.friction += sums.friction;
         }
