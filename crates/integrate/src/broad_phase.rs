@@ -17,13 +17,17 @@ const MAX_CELLS_PER_AXIS: i64 = 4;
 /// Reusable buffers for [`BroadPhase::overlapping_pairs`].
 #[derive(Clone, Debug, Default)]
 pub struct BroadPhase {
-    entries: Vec<(u64, u32)>,
+    /// (cell, box) entries, packed ([`Packing`]).
+    entries: Vec<u64>,
     large: Vec<u32>,
     chunks: Vec<Vec<(u32, u32)>>,
     /// The boxes' largest extents (for the cell size).
     extents: Vec<Real>,
     /// Where each cell's entries start, then their end.
     starts: Vec<usize>,
+    /// Fewer bits for the entries than 64 (tests of cells that share a key).
+    #[cfg(test)]
+    entry_bits: Option<u32>,
 }
 
 /// Cell coordinates of a point for cells of size `h` anchored at `origin`.
@@ -42,11 +46,60 @@ fn floor_to_int(x: Real) -> i64 {
     }
 }
 
-/// A 63-bit key of a cell (21 bits per axis). Far-apart cells may share a key: that only
-/// adds candidate tests, never a missed or a doubled pair.
-fn cell_key(c: [i64; 3]) -> u64 {
-    const MASK: u64 = (1 << 21) - 1;
-    ((c[0] as u64 & MASK) << 42) | ((c[1] as u64 & MASK) << 21) | (c[2] as u64 & MASK)
+/// How an entry packs a cell and a box into one `u64` (8 bytes, where a `(u64, u32)` pair
+/// takes 16, and sorted as one integer): the box's index in the low `index_bits`, the cell's
+/// key above it, `bits[k]` bits of its coordinate on axis k. Each axis has the bits its
+/// number of cells needs, so that no two cells share a key; a grid too large for the 64
+/// bits (more than 2²¹ cells on an axis, or more cells and boxes than 2⁶⁴) takes bits from
+/// its longest axes, and cells a multiple of 2^bits[k] apart then share a key: that only
+/// adds tests of boxes that cannot intersect, never a missed or a doubled pair (an axis
+/// keeps 10 bits at least, and a box covers at most [`MAX_CELLS_PER_AXIS`] cells per axis,
+/// so it is never twice under one key).
+#[derive(Clone, Copy, Debug)]
+struct Packing {
+    bits: [u32; 3],
+    index_bits: u32,
+}
+
+/// Bits that hold the numbers 0 to n − 1.
+fn bits_for(n: u64) -> u32 {
+    u64::BITS - n.saturating_sub(1).leading_zeros()
+}
+
+impl Packing {
+    /// The packing of `boxes` boxes in a grid of `cells` cells per axis into `total` bits
+    /// (64; fewer in tests, to make cells share keys).
+    fn new(cells: [i64; 3], boxes: usize, total: u32) -> Self {
+        let index_bits = bits_for(boxes as u64).max(1);
+        let mut bits = cells.map(|c| bits_for(c.clamp(1, 1 << 21) as u64));
+        while index_bits + bits.iter().sum::<u32>() > total {
+            let longest = (0..3).max_by_key(|&k| (bits[k], k)).expect("three axes");
+            bits[longest] -= 1;
+        }
+        Packing { bits, index_bits }
+    }
+
+    /// The key of the cell at integer coordinates `c`.
+    fn key(&self, c: [i64; 3]) -> u64 {
+        let [bx, by, bz] = self.bits;
+        let low = |x: i64, b: u32| x as u64 & ((1u64 << b) - 1);
+        (low(c[0], bx) << (by + bz)) | (low(c[1], by) << bz) | low(c[2], bz)
+    }
+
+    /// The entry of box `i` in the cell of key `key`.
+    fn entry(&self, key: u64, i: u32) -> u64 {
+        (key << self.index_bits) | u64::from(i)
+    }
+
+    /// The cell key of an entry.
+    fn key_of(&self, entry: u64) -> u64 {
+        entry >> self.index_bits
+    }
+
+    /// The box of an entry.
+    fn index_of(&self, entry: u64) -> u32 {
+        (entry & ((1u64 << self.index_bits) - 1)) as u32
+    }
 }
 
 /// Cell size: twice the median of the boxes' largest extents, so that a typical box covers
@@ -81,6 +134,13 @@ impl BroadPhase {
         }
         let inv_h = 1.0 / h;
         let origin = boxes.iter().fold(Vec3::repeat(Real::INFINITY), |m, b| m.inf(&b.mins));
+        let finite = |b: &&Aabb| b.mins.iter().chain(b.maxs.iter()).all(|x| x.is_finite());
+        let top = boxes.iter().filter(finite).fold(origin, |m, b| m.sup(&b.maxs));
+        let last = cell_of(&top, &origin, inv_h);
+        let total = u64::BITS;
+        #[cfg(test)]
+        let total = self.entry_bits.unwrap_or(total);
+        let packing = Packing::new(last.map(|c| c.saturating_add(1)), boxes.len(), total);
         for (i, b) in boxes.iter().enumerate() {
             if !(b.mins.iter().chain(b.maxs.iter()).all(|x| x.is_finite())) {
                 continue;
@@ -94,7 +154,7 @@ impl BroadPhase {
             for x in lo[0]..=hi[0] {
                 for y in lo[1]..=hi[1] {
                     for z in lo[2]..=hi[2] {
-                        self.entries.push((cell_key([x, y, z]), i as u32));
+                        self.entries.push(packing.entry(packing.key([x, y, z]), i as u32));
                     }
                 }
             }
@@ -108,7 +168,7 @@ impl BroadPhase {
         starts.clear();
         starts.extend(
             (0..entries.len())
-                .filter(|&k| k == 0 || entries[k].0 != entries[k - 1].0)
+                .filter(|&k| k == 0 || packing.key_of(entries[k]) != packing.key_of(entries[k - 1]))
                 .chain(std::iter::once(entries.len())),
         );
         let chunk = (starts.len() / (4 * rayon::current_num_threads()).max(1)).max(64);
@@ -124,18 +184,19 @@ impl BroadPhase {
             out.clear();
             for b in c * chunk..((c + 1) * chunk).min(buckets) {
                 let (s, e) = (starts[b], starts[b + 1]);
-                let key = entries[s].0;
+                let key = packing.key_of(entries[s]);
                 for a in s..e {
-                    let i = entries[a].1;
+                    let i = packing.index_of(entries[a]);
                     let bi = &boxes[i as usize];
-                    for &(_, j) in &entries[a + 1..e] {
+                    for &other in &entries[a + 1..e] {
+                        let j = packing.index_of(other);
                         let bj = &boxes[j as usize];
                         if !bi.intersects(bj) {
                             continue;
                         }
                         // report only in the cell of the intersection's minimum corner
                         let corner = bi.mins.sup(&bj.mins);
-                        if cell_key(cell_of(&corner, &origin, inv_h)) != key {
+                        if packing.key(cell_of(&corner, &origin, inv_h)) != key {
                             continue;
                         }
                         let (p, q) = if i < j { (i, j) } else { (j, i) };
@@ -219,6 +280,32 @@ mod tests {
             bp.overlapping_pairs(&boxes, accept, &mut pairs);
             prop_assert_eq!(pairs, brute_force(&boxes, accept));
         }
+
+        #[test]
+        fn cells_that_share_a_key_give_the_same_pairs(boxes in boxes_strategy()) {
+            // 2 bits per axis besides the boxes' index: cells 4 apart share a key
+            let accept = |i: u32, j: u32| (i + j) % 7 != 3;
+            let index_bits = bits_for(boxes.len() as u64).max(1);
+            let mut bp = BroadPhase { entry_bits: Some(index_bits + 6), ..Default::default() };
+            let mut pairs = Vec::new();
+            bp.overlapping_pairs(&boxes, accept, &mut pairs);
+            prop_assert_eq!(pairs, brute_force(&boxes, accept));
+        }
+    }
+
+    #[test]
+    fn a_packing_gives_back_its_cell_and_box_and_shares_keys_only_when_short_of_bits() {
+        let p = Packing::new([3000, 5, 1], 10_000, u64::BITS);
+        assert_eq!((p.bits, p.index_bits), ([12, 3, 0], 14));
+        let e = p.entry(p.key([2999, 4, 0]), 9_999);
+        assert_eq!((p.key_of(e), p.index_of(e)), (p.key([2999, 4, 0]), 9_999));
+        // the largest grid and the most boxes: 32 bits of index, 11 + 11 + 10 of cells
+        let p = Packing::new([1 << 21; 3], u32::MAX as usize, u64::BITS);
+        assert_eq!((p.bits, p.index_bits), ([11, 11, 10], 32));
+        assert_eq!(p.key([0, 0, 0]), p.key([0, 0, 1 << 10]));
+        assert_ne!(p.key([0, 0, 0]), p.key([0, 0, 1 << 9]));
+        let e = p.entry(p.key([7, 2047, 1023]), u32::MAX - 1);
+        assert_eq!((p.key_of(e), p.index_of(e)), (p.key([7, 2047, 1023]), u32::MAX - 1));
     }
 
     #[test]
