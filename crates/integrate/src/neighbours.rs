@@ -623,6 +623,49 @@ mod tests {
         assert_eq!(size_of::<PairContact>(), 200);
     }
 
+    #[test]
+    fn the_forces_made_from_the_applied_force_are_the_laws() {
+        let n = Vec3::new(0.6, 0.0, 0.8);
+        // undamped and damped, sticking and sliding (a fast tangential motion)
+        for (cn, ct, slip) in
+            [(0.0, 0.0, 0.01), (0.0, 0.0, 50.0), (3.0, 2.0, 0.01), (3.0, 2.0, 50.0)]
+        {
+            let params = FrictionalParams { kn: 1e5, ks: 4e4, tan_phi: 0.4, cn, ct };
+            let mut c = PairContact {
+                params,
+                state: FrictionalContact::new(n),
+                applied: AppliedForce::default(),
+                point: Vec3::zeros(),
+            };
+            c.state.shear_force = Vec3::new(0.0, 3.0, 0.0);
+            let mut reference = c.state.clone();
+            let g = ContactGeometry {
+                normal: n,
+                overlap: 1e-4,
+                point: Vec3::new(0.1, 0.2, 0.3),
+                relative_velocity: Vec3::new(-0.8 * slip, 0.3 * slip, 0.6 * slip - 0.2),
+                spin_about_normal: 0.5,
+            };
+            let f = update_frictional_contact(&params, &mut reference, &law_kinematics(&g), 1e-4);
+            let mut law = LawOut::default();
+            apply_law(&mut c, &g, [0, 1], [Vec3::zeros(), n * 0.2], 1e-4, &mut law);
+            let made = c.forces();
+            let case = format!("cn {cn}, ct {ct}, slip {slip}");
+            assert_eq!(c.state, reference, "{case}");
+            assert_eq!(made.normal_force, f.normal_force, "{case}");
+            assert_eq!(made.shear_force, f.shear_force, "{case}");
+            assert_eq!(made.force_on_2, f.force_on_2, "{case}");
+            assert_eq!(made.elastic_energy, f.elastic_energy, "{case}");
+            assert_eq!(law.elastic, f.elastic_energy, "{case}");
+            assert_eq!(made.sliding, f.sliding, "{case}");
+            assert_eq!(made.sliding, slip > 1.0, "{case}");
+            let scale = f.force_on_2.norm();
+            assert!((made.dashpot_force - f.dashpot_force).norm() <= 1e-14 * scale, "{case}");
+            assert_eq!(f.dashpot_force == Vec3::zeros(), law.dashpot.is_none(), "{case}");
+            assert_eq!(cn == 0.0, f.dashpot_force == Vec3::zeros(), "{case}");
+        }
+    }
+
     fn contact(point: Real) -> PairContact {
         PairContact {
             params: FrictionalParams { kn: 1.0, ks: 0.5, tan_phi: 0.3, cn: 0.0, ct: 0.0 },
