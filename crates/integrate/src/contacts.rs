@@ -657,7 +657,7 @@ impl ContactPipeline {
                 Pick::Pair(n) => {
                     let (m, loads) = pair_loads.next().expect("a touching pair's loads");
                     debug_assert_eq!(m, n);
-                    loads.iter().for_each(&mut add);
+                    loads.for_each(|l| add(&l));
                 }
             }
         }

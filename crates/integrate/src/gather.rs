@@ -154,7 +154,7 @@ impl LoadIndex {
                             a += 1;
                         } else {
                             if let Some(l) = pair_load(paired[b]) {
-                                add(l);
+                                add(&l);
                             }
                             b += 1;
                         }

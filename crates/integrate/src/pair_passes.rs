@@ -92,12 +92,36 @@ impl ChunkSums {
     }
 }
 
+/// The loads of a touching pair at the parallel update, kept for their sum (`gather.rs`):
+/// the force on body 2 (body 1's is its opposite) and the torques on the two bodies; 72
+/// bytes where its two [`NodeLoad`]s are 112 (the nodes are the key's).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct PairLoads {
+    force_on_2: Vec3,
+    torques: [Vec3; 2],
+}
+
+impl PairLoads {
+    /// The loads of an outcome (`step_pair`'s: body 1's force is −body 2's, exactly).
+    fn of(o: &PairOutcome) -> Self {
+        debug_assert_eq!(o.loads[0].force, -o.loads[1].force);
+        PairLoads { force_on_2: o.loads[1].force, torques: [o.loads[0].torque, o.loads[1].torque] }
+    }
+
+    /// Body `side`'s load (0: body 1, 1: body 2) on node `node`.
+    #[inline]
+    fn load(&self, side: usize, node: u32) -> NodeLoad {
+        let force = if side == 0 { -self.force_on_2 } else { self.force_on_2 };
+        NodeLoad { node, force, torque: self.torques[side] }
+    }
+}
+
 /// One chunk's part of the last update.
 #[derive(Clone, Debug, Default)]
 struct ChunkOut {
-    /// The outcomes of the pairs it stepped (not the far-apart ones), with their index, in
-    /// order (the parallel update only).
-    outcomes: Vec<(u32, PairOutcome)>,
+    /// The loads of its pairs that touch after the update, with their index, in order (the
+    /// parallel update only).
+    outcomes: Vec<(u32, PairLoads)>,
     /// What its pairs added to the step's records.
     book: ChunkBook,
 }
@@ -213,13 +237,14 @@ impl NeighbourList {
                     if slot.is_none() && apart(p, key) {
                         continue;
                     }
-                    // the outcome written where it is kept (no copy of it)
-                    positions[i] = out.outcomes.len() as u32;
-                    out.outcomes.push(((base + i) as u32, PairOutcome::default()));
-                    let o = &mut out.outcomes.last_mut().expect("just pushed").1;
+                    let mut o = PairOutcome::default();
                     let mut law = LawOut::default();
-                    step_pair(model, &k, key, slot, dt, None, o, &mut law);
-                    out.book.record(base + i, o, slot.as_deref(), &law);
+                    step_pair(model, &k, key, slot, dt, None, &mut o, &mut law);
+                    out.book.record(base + i, &o, slot.as_deref(), &law);
+                    if slot.is_some() {
+                        positions[i] = out.outcomes.len() as u32;
+                        out.outcomes.push(((base + i) as u32, PairLoads::of(&o)));
+                    }
                 }
             });
         let (report, total) = scratch.totals(used, ended_dissipation);
@@ -284,30 +309,30 @@ impl NeighbourList {
     pub(crate) fn touching_loads<'a>(
         &'a self,
         scratch: &'a PairScratch,
-    ) -> impl Iterator<Item = (usize, &'a [NodeLoad])> + 'a {
+    ) -> impl Iterator<Item = (usize, impl Iterator<Item = NodeLoad>)> + 'a {
         let used = self.keys.len().div_ceil(PAIR_CHUNK);
-        scratch.chunks[..used.min(scratch.chunks.len())]
-            .iter()
-            .flat_map(|c| &c.outcomes)
-            .filter(move |(n, _)| self.contacts[*n as usize].is_some())
-            .map(move |(n, o)| {
-                let wall = matches!(self.keys[*n as usize].0, Feature::Wall(_));
-                (*n as usize, &o.loads[usize::from(wall)..])
-            })
+        scratch.chunks[..used.min(scratch.chunks.len())].iter().flat_map(|c| &c.outcomes).map(
+            move |&(n, loads)| {
+                let (body_1, body_2) = self.keys[n as usize];
+                let node = |f: Feature| match f {
+                    Feature::Particle(i) => Some(i),
+                    _ => None,
+                };
+                let sides = [node(body_1), node(body_2)];
+                let each = (0..2).filter_map(move |side| Some(loads.load(side, sides[side]?)));
+                (n as usize, each)
+            },
+        )
     }
 
     /// Body `side`'s node load of candidate pair `n` at the last parallel update
     /// ([`NeighbourList::update`]), if the pair touches.
     #[inline]
-    pub(crate) fn load_of<'a>(
-        &self,
-        scratch: &'a PairScratch,
-        n: usize,
-        side: usize,
-    ) -> Option<&'a NodeLoad> {
+    pub(crate) fn load_of(&self, scratch: &PairScratch, n: usize, side: usize) -> Option<NodeLoad> {
         self.contacts[n].as_ref()?;
         let position = scratch.position[n] as usize;
-        Some(&scratch.chunks[n / PAIR_CHUNK].outcomes[position].1.loads[side])
+        // (the node is not read: the caller sums into the particle it asked for)
+        Some(scratch.chunks[n / PAIR_CHUNK].outcomes[position].1.load(side, u32::MAX))
     }
 
     /// Elastic energy stored at the last update.
