@@ -62,8 +62,11 @@ pub struct FrictionalContact {
     pub shear_force: Vec3,
     /// Normal of the previous update (unit, from body 1 to body 2).
     pub normal: Vec3,
-    /// Energy dissipated over the contact's life (`friction` and `viscous` are used here).
-    pub dissipated: Dissipation,
+    /// Energy dissipated by Coulomb slip over the contact's life (J): what the energy
+    /// balance books when the contact ends. (The dashpots' dissipation is booked per
+    /// update, `ContactForces::dissipated`; a frictional contact has no plastic or breakage
+    /// term, so the state keeps the one total it needs: 8 bytes where a `Dissipation` is 32.)
+    pub dissipated_friction: Real,
     /// Overlap offset δ₀ (m): the normal force is `kn·(δ − δ₀)` (docs/model.md §1, §2). 0 for
     /// a contact found when it first touched; set when a touching changes the features that
     /// own it, so that the force it carries does not jump (the engine's hand-over), then
@@ -82,7 +85,7 @@ impl FrictionalContact {
         FrictionalContact {
             shear_force: Vec3::zeros(),
             normal,
-            dissipated: Dissipation::default(),
+            dissipated_friction: 0.0,
             overlap_offset: 0.0,
             normal_force: 0.0,
         }
@@ -200,7 +203,7 @@ pub fn update_frictional_contact(
         (Vec3::zeros(), 0.0)
     };
     let dissipated = Dissipation { friction, viscous, ..Default::default() };
-    state.dissipated += dissipated;
+    state.dissipated_friction += friction;
     ContactForces {
         normal_force: fn_,
         shear_force: fs,

@@ -44,7 +44,7 @@ fn drive(
         incs.push(f.dissipated.friction);
         f_old = f;
     }
-    (work, f_old.elastic_energy - e0, st.dissipated.friction, incs)
+    (work, f_old.elastic_energy - e0, st.dissipated_friction, incs)
 }
 
 #[test]
@@ -315,7 +315,7 @@ fn undamped_reference(
     state.normal = n;
     state.normal_force = fn_;
     let dissipated = Dissipation { friction, ..Default::default() };
-    state.dissipated += dissipated;
+    state.dissipated_friction += friction;
     ContactForces {
         normal_force: fn_,
         shear_force: fs,

@@ -39,7 +39,7 @@ impl Contacts {
     /// the engine's energy account, `Energy::contact_damping`).
     pub fn dissipated(&self) -> Real {
         self.ended_dissipation
-            + self.list.iter().map(|c| c.state.dissipated.friction).sum::<Real>()
+            + self.list.iter().map(|c| c.state.dissipated_friction).sum::<Real>()
             + self.pairs.dissipated()
     }
 
@@ -50,7 +50,7 @@ impl Contacts {
         (
             self.list.iter().map(|c| c.forces.elastic_energy).sum::<Real>() + elastic,
             self.ended_dissipation
-                + self.list.iter().map(|c| c.state.dissipated.friction).sum::<Real>()
+                + self.list.iter().map(|c| c.state.dissipated_friction).sum::<Real>()
                 + friction,
         )
     }

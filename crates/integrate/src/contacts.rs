@@ -518,7 +518,7 @@ impl ContactPipeline {
                 continue;
             }
             let c = &old[o];
-            contacts.ended_dissipation += c.state.dissipated.friction;
+            contacts.ended_dissipation += c.state.dissipated_friction;
             let (_, _, g) = geometry(model, &k, c);
             let now = continued_overlap(c, &g, dt);
             // the spring leaves the balance: −½·F·δ_now (see above); ended by separating

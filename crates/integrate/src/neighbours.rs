@@ -31,8 +31,8 @@ use serde::{Deserialize, Serialize};
 pub type ContactKey = (Feature, Feature);
 
 /// The state of a touching pair: what a [`Contact`] holds less what the key says (the sites
-/// and the owners), and of the law's output only the force it applied (200 bytes where a
-/// [`Contact`] is 344: the rest of [`ContactForces`] is made from it when asked,
+/// and the owners), and of the law's output only the force it applied (176 bytes where a
+/// [`Contact`] is 320: the rest of [`ContactForces`] is made from it when asked,
 /// [`PairContact::forces`]).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct PairContact {
@@ -79,7 +79,7 @@ impl PairContact {
     /// and the state: the forces and the elastic energy exactly; the dashpots' part as
     /// `(Fn − kn·δ)·n + (Fs − Fs,spring)` (the law's to round-off; zero without dashpots);
     /// the update's own dissipation is not kept (zero here: the contact's lifetime friction
-    /// and viscous dissipation are in `state.dissipated`).
+    /// is `state.dissipated_friction`).
     pub fn forces(&self) -> ContactForces {
         let (a, s) = (&self.applied, &self.state);
         let dashpot_force = if self.params.is_damped() {
@@ -407,7 +407,7 @@ pub(crate) fn step_pair(
             });
         }
         (None, Some(c)) => {
-            out.ended_dissipation = c.state.dissipated.friction;
+            out.ended_dissipation = c.state.dissipated_friction;
             let (_, _, g) = geometry_of(model, k, &site1, &site2, &c.state.normal);
             let now = g.overlap - c.state.overlap_offset;
             // the spring leaves the balance: −½·F·δ_now (see `settle_births`)
@@ -620,7 +620,7 @@ mod tests {
         // the 4 to 5 candidates per sphere of a packing: 24 bytes each; the 1.5 to 2
         // touching ones: a contact each besides (its size known: a change shows here)
         assert_eq!(size_of::<ContactKey>() + size_of::<Option<Box<PairContact>>>(), 24);
-        assert_eq!(size_of::<PairContact>(), 200);
+        assert_eq!(size_of::<PairContact>(), 176);
     }
 
     #[test]

@@ -77,7 +77,7 @@ impl ChunkSums {
     /// [`PairContact::elastic_energy`], the same bits) and its friction over its life.
     pub(crate) fn add_touching(&mut self, c: &PairContact, elastic: Real) {
         self.elastic += elastic;
-        self.friction += c.state.dissipated.friction;
+        self.friction += c.state.dissipated_friction;
     }
 
     /// Adds this chunk's sums to the step's: `total`, the report and the ended pairs'

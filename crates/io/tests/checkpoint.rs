@@ -397,7 +397,8 @@ fn foreign_and_odd_files_give_their_error() {
     // 5: the `State` before the free spheres' neighbour list;
     // 6: the `State` before the viscous contact damping;
     // 7: the `State` before a structure's self-contact switch;
-    // 8: the `State` before the lean links (classes, springs, one rest rotation)
+    // 8: the `State` before the lean links (classes, springs, one rest rotation);
+    // 9: the `State` before a contact state's lone friction total
     let older = [
         (CHECKPOINT_VERSION + 1, "newer"),
         (0, "older"),
@@ -407,8 +408,9 @@ fn foreign_and_odd_files_give_their_error() {
         (6, "older"),
         (7, "older"),
         (8, "older"),
+        (9, "older"),
     ];
-    assert_eq!(CHECKPOINT_VERSION, 9);
+    assert_eq!(CHECKPOINT_VERSION, 10);
     for (version, word) in older {
         let mut bytes = valid.to_vec();
         bytes[8..12].copy_from_slice(&version.to_le_bytes());

@@ -31,7 +31,9 @@
 //! half); version 8 a structure's self-contact switch (`Structure::self_contact`); version 9
 //! the lean links (`Links::classes`, `class`, `springs`; a link state with one rest rotation
 //! q2⁰⁻¹·q1⁰ for the two reference orientations, its plastic rotation in node 1's body
-//! frame, and no per-link dissipation: the links' dissipation is summed in the energy).
+//! frame, and no per-link dissipation: the links' dissipation is summed in the energy);
+//! version 10 a contact state's lifetime dissipation as its friction alone
+//! (`FrictionalContact::dissipated_friction`, where it kept a whole `Dissipation`).
 //! Files of older versions are refused with the version error, which says so.
 //!
 //! # Writing
@@ -73,7 +75,7 @@ use std::path::{Path, PathBuf};
 pub const CHECKPOINT_MAGIC: [u8; 8] = *b"FLXDMCKP";
 
 /// The format version this build writes and reads (see the module documentation).
-pub const CHECKPOINT_VERSION: u32 = 9;
+pub const CHECKPOINT_VERSION: u32 = 10;
 
 /// Size of the header before the payload: magic, version, length, checksum (bytes).
 pub const CHECKPOINT_HEADER_LEN: usize = 24;
