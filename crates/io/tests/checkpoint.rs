@@ -524,7 +524,7 @@ fn damaged_contacts_and_counters_are_refused() {
         damage(&mut touching[0].1);
         c.state.contacts.pairs = touching.into();
     }
-    let damages: [fn(&mut Checkpoint); 14] = [
+    let damages: [fn(&mut Checkpoint); 17] = [
         |c| general(c).site2.weights[0] = f64::NAN,
         |c| general(c).params.cn = -1.0,
         |c| general(c).params.ct = f64::NAN,
@@ -536,6 +536,9 @@ fn damaged_contacts_and_counters_are_refused() {
         |c| pair(c, |p| p.state.normal *= 2.0),
         |c| pair(c, |p| p.params.kn = f64::NAN),
         |c| pair(c, |p| p.params.cn = f64::INFINITY),
+        |c| pair(c, |p| p.state.dissipated_friction = f64::NAN),
+        |c| pair(c, |p| p.state.normal_force = f64::INFINITY),
+        |c| general(c).state.dissipated_friction = f64::NEG_INFINITY,
         |c| c.state.clock.dt_updated_at = c.state.clock.steps + 5,
         |c| c.state.wall_controls.clear(),
         |c| {

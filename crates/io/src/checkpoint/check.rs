@@ -87,6 +87,14 @@ fn check_law(p: &FrictionalParams, st: &FrictionalContact, point: &Vec3) -> Resu
     if !st.overlap_offset.is_finite() {
         return Err(format!("an overlap offset of {} m", st.overlap_offset));
     }
+    // both enter the energy balance (a spring's energy at its end, the friction booked),
+    // where a NaN would pass the energy watch unseen
+    if !(st.normal_force.is_finite() && st.dissipated_friction.is_finite()) {
+        return Err(format!(
+            "a normal force of {} N or a friction dissipation of {} J",
+            st.normal_force, st.dissipated_friction
+        ));
+    }
     Ok(())
 }
 
