@@ -71,6 +71,30 @@ impl Energy {
             + self.contact_releases
     }
 
+    /// The terms by name, in the order of the energy output's columns.
+    pub fn named_terms(&self) -> [(&'static str, Real); 13] {
+        [
+            ("kinetic_translation", self.kinetic_translation),
+            ("kinetic_rotation", self.kinetic_rotation),
+            ("elastic_links", self.elastic_links),
+            ("elastic_contacts", self.elastic_contacts),
+            ("gravity_work", self.gravity_work),
+            ("load_work", self.load_work),
+            ("boundary_work", self.boundary_work),
+            ("contact_births", self.contact_births),
+            ("damping", self.damping),
+            ("links_dissipated", self.links_dissipated),
+            ("friction", self.friction),
+            ("contact_damping", self.contact_damping),
+            ("contact_releases", self.contact_releases),
+        ]
+    }
+
+    /// The first term that is NaN or infinite, if any.
+    pub fn first_non_finite(&self) -> Option<(&'static str, Real)> {
+        self.named_terms().into_iter().find(|(_, v)| !v.is_finite())
+    }
+
     /// Stored energy minus the energy put in plus the energy taken out: constant in time when
     /// the balance closes.
     pub fn balance(&self) -> Real {

@@ -78,6 +78,25 @@ pub enum SimulationError {
         /// The last critical step estimate.
         critical_dt: Real,
     },
+    /// An energy term became NaN or infinite while the positions and velocities are finite: a
+    /// force or a dissipation is garbage, and the balance can no longer watch the run.
+    #[error(
+        "the energy term `{term}` is {value} at step {step} (t = {time:.6e} s): a contact or \
+         link force, a load or a dissipation is not finite, and the energy balance can no \
+         longer be checked; the run is stopped. {culprit}"
+    )]
+    NonFiniteEnergy {
+        /// The first non-finite term (named as in the energy output).
+        term: &'static str,
+        /// Its value.
+        value: Real,
+        /// The step.
+        step: u64,
+        /// The time.
+        time: Real,
+        /// Where the energy is (see `EnergyBalance::culprit`).
+        culprit: String,
+    },
     /// The energy balance error passed the limit on the side of energy created: the run made
     /// energy it cannot account for.
     #[error(

@@ -434,12 +434,23 @@ impl Simulation {
 
     /// Stops the run when the energy balance error passes `settings.energy_tolerance`
     /// (relative to the energy scale) on the side of energy created, naming the step, the
-    /// time and where the energy is. Energy lost beyond the limit (dissipation the balance
+    /// time and where the energy is. An energy term that is NaN or infinite stops the run
+    /// whether the watch is on or not (a NaN error compares false with any limit: it must
+    /// not pass for a closed balance, nor be written as output). Energy lost beyond the limit (dissipation the balance
     /// does not count) raises a warning, once.
     fn watch_energy(&mut self) -> Result<(), SimulationError> {
+        if let Some((term, value)) = self.state.energy.terms.first_non_finite() {
+            return Err(SimulationError::NonFiniteEnergy {
+                term,
+                value,
+                step: self.state.clock.steps,
+                time: self.state.clock.time,
+                culprit: describe(&self.state),
+            });
+        }
         let Some(limit) = self.state.settings.energy_tolerance else { return Ok(()) };
         let error = self.state.energy.watch.relative_error(&self.state.energy.terms);
-        if error.is_nan() || error.abs() <= limit {
+        if error.abs() <= limit {
             return Ok(());
         }
         let change = self.state.energy.terms.balance() - self.state.energy.watch.initial_balance;

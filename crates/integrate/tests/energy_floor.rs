@@ -4,7 +4,7 @@
 //! must still stop a run that creates energy.
 
 use flexdem_contact::Material;
-use flexdem_elements::Model;
+use flexdem_elements::{Dofs, Model};
 use flexdem_geom::{Real, Vec3};
 use flexdem_integrate::{Settings, Simulation, SimulationError};
 
@@ -50,4 +50,33 @@ fn energy_created_is_still_caught_above_the_round_off() {
         }
     }
     assert!(matches!(caught, Some(SimulationError::EnergyBalance { .. })), "{caught:?}");
+}
+
+#[test]
+fn a_non_finite_energy_term_stops_the_run_even_with_the_watch_off() {
+    // a force hook that computes 0/0 on a support: the blocked sphere does not move, so
+    // every position and velocity stays finite, but the load's work `F·v·dt` is NaN. A NaN
+    // balance error compares false with any limit; it must stop the run, not pass for a
+    // closed balance
+    for tolerance in [Some(0.05), None] {
+        let mut model = touching_lattice();
+        model.block([13], Dofs::ALL).unwrap();
+        let settings = Settings { energy_tolerance: tolerance, ..Settings::default() };
+        let mut sim = Simulation::new(model, settings).unwrap();
+        sim.step().unwrap();
+        let zero = sim.energy().stored() * 0.0;
+        sim.set_force_hook(Box::new(move |_, _, forces, _| forces[13].x += zero / zero));
+        let caught = sim.step().unwrap_err();
+        match &caught {
+            SimulationError::NonFiniteEnergy { term, step, .. } => {
+                assert_eq!((*term, *step), ("load_work", 2), "{caught}");
+            }
+            other => panic!("{other:?}"),
+        }
+        let message = caught.to_string();
+        assert!(message.contains("`load_work` is NaN at step 2"), "{message}");
+        for i in 0..sim.model().particles.len() {
+            assert!(sim.model().particles.pos[i].iter().all(|x| x.is_finite()));
+        }
+    }
 }

@@ -5,8 +5,8 @@ use crate::error::OutputError;
 use crate::triaxial::{triaxial_state, TriaxialSpec, TRIAXIAL_COLUMNS};
 use flexdem_geom::{Real, Vec3};
 use flexdem_integrate::{
-    deviator_stress, love_weber_stress, mean_stress, solid_fraction, wall_normal_stress, Region,
-    Simulation,
+    deviator_stress, love_weber_stress, mean_stress, solid_fraction, wall_normal_stress, Energy,
+    Region, Simulation,
 };
 use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
@@ -95,43 +95,24 @@ pub struct OutputSettings {
     pub plot: bool,
 }
 
-/// Names of the energy columns, in the order of [`energy_values`].
-const ENERGY_TERMS: [&str; 14] = [
-    "kinetic_translation",
-    "kinetic_rotation",
-    "elastic_links",
-    "elastic_contacts",
-    "gravity_work",
-    "load_work",
-    "boundary_work",
-    "contact_births",
-    "damping",
-    "links_dissipated",
-    "friction",
-    "contact_damping",
-    "contact_releases",
-    "balance",
-];
+/// Names of the energy columns: the terms of [`flexdem_integrate::Energy::named_terms`] and
+/// the balance, in the order of [`energy_values`].
+fn energy_terms() -> [&'static str; 14] {
+    let mut names = ["balance"; 14];
+    for (name, (term, _)) in names.iter_mut().zip(Energy::default().named_terms()) {
+        *name = term;
+    }
+    names
+}
 
-/// The energy terms of a simulation in the order of [`ENERGY_TERMS`] (J).
+/// The energy terms of a simulation and their balance, in the order of [`energy_terms`] (J).
 fn energy_values(sim: &Simulation) -> [Real; 14] {
     let e = sim.energy();
-    [
-        e.kinetic_translation,
-        e.kinetic_rotation,
-        e.elastic_links,
-        e.elastic_contacts,
-        e.gravity_work,
-        e.load_work,
-        e.boundary_work,
-        e.contact_births,
-        e.damping,
-        e.links_dissipated,
-        e.friction,
-        e.contact_damping,
-        e.contact_releases,
-        e.balance(),
-    ]
+    let mut values = [e.balance(); 14];
+    for (value, (_, term)) in values.iter_mut().zip(e.named_terms()) {
+        *value = term;
+    }
+    values
 }
 
 /// Names of the stress columns, in the order of [`stress_values`].
@@ -168,7 +149,7 @@ pub fn series_columns(spec: &SeriesSpec) -> Vec<String> {
         Quantity::Position(_) => triple("", "m"),
         Quantity::Velocity(_) => triple("v", "m_per_s"),
         Quantity::AngularVelocity(_) => triple("w", "rad_per_s"),
-        Quantity::Energy => ENERGY_TERMS.iter().map(|t| format!("{name}_{t}_J")).collect(),
+        Quantity::Energy => energy_terms().iter().map(|t| format!("{name}_{t}_J")).collect(),
         Quantity::ForceOnParticles(_) => triple("f", "N"),
         Quantity::ContactCount | Quantity::BrokenLinks => vec![format!("{name}_count")],
         Quantity::WallForce(_) => triple("f", "N"),
