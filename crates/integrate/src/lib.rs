@@ -19,6 +19,7 @@ mod measures;
 mod neighbours;
 mod offsets;
 mod pair_passes;
+mod pair_store;
 mod parallel;
 mod pipeline;
 mod prefilter;

@@ -18,6 +18,7 @@ use crate::contact::{
     SPHERE_OWNER, WALL_OWNER,
 };
 use crate::dashpots::shear_exit;
+use crate::pair_store::{blocks_for, BlockContacts, BLOCK, NO_CONTACT};
 use flexdem_contact::{
     spring_energy, spring_energy_squared, update_frictional_contact, ContactForces,
     FrictionalContact, FrictionalParams,
@@ -106,10 +107,11 @@ impl PairContact {
 #[serde(from = "Vec<(ContactKey, PairContact)>", into = "Vec<(ContactKey, PairContact)>")]
 pub struct NeighbourList {
     pub(crate) keys: Vec<ContactKey>,
-    /// One per key: its contact while it touches, boxed (most candidates do not touch, and a
-    /// pair that does not costs the pointer only: 8 bytes per candidate instead of a
-    /// contact's size, and a rebuild moves pointers).
-    pub(crate) contacts: Vec<Option<Box<PairContact>>>,
+    /// One per key: the index of its contact in its block's array while it touches, else
+    /// [`NO_CONTACT`] (most candidates do not touch: 4 bytes each, see `pair_store.rs`).
+    pub(crate) slots: Vec<u32>,
+    /// Per block of [`BLOCK`] keys, the contacts of its touching pairs.
+    pub(crate) blocks: Vec<BlockContacts<PairContact>>,
     /// `energy_sums` as the last update in one pass found them (its pass visits every
     /// contact anyway); `None` when not known (after a parallel update, a clear, a load).
     pub(crate) sums: Option<(Real, Real)>,
@@ -129,14 +131,28 @@ fn new_generation() -> u64 {
 
 impl From<Vec<(ContactKey, PairContact)>> for NeighbourList {
     fn from(touching: Vec<(ContactKey, PairContact)>) -> Self {
-        let (keys, contacts) = touching.into_iter().map(|(k, c)| (k, Some(Box::new(c)))).unzip();
-        NeighbourList { keys, contacts, sums: None, generation: new_generation() }
+        let touching_len = touching.len();
+        let mut list = NeighbourList {
+            keys: Vec::with_capacity(touching.len()),
+            slots: Vec::with_capacity(touching.len()),
+            blocks: Vec::with_capacity(blocks_for(touching.len())),
+            sums: None,
+            generation: new_generation(),
+        };
+        for (n, (key, contact)) in touching.into_iter().enumerate() {
+            if n % BLOCK == 0 {
+                list.blocks.push(BlockContacts::with_room(BLOCK.min(touching_len - n)));
+            }
+            list.keys.push(key);
+            list.slots.push(list.blocks[n / BLOCK].push_carried(contact));
+        }
+        list
     }
 }
 
 impl From<NeighbourList> for Vec<(ContactKey, PairContact)> {
     fn from(list: NeighbourList) -> Self {
-        list.keys.into_iter().zip(list.contacts).filter_map(|(k, c)| Some((k, *c?))).collect()
+        list.touching().map(|(k, c)| (*k, c.clone())).collect()
     }
 }
 
@@ -219,22 +235,34 @@ impl NeighbourList {
 
     /// Touching pairs.
     pub fn len(&self) -> usize {
-        self.contacts.iter().filter(|c| c.is_some()).count()
+        self.slots.iter().filter(|&&s| s != NO_CONTACT).count()
     }
 
     /// Whether no pair touches.
     pub fn is_empty(&self) -> bool {
-        self.contacts.iter().all(|c| c.is_none())
+        self.slots.iter().all(|&s| s == NO_CONTACT)
+    }
+
+    /// The contact of candidate `index`, if it touches.
+    #[inline]
+    pub(crate) fn contact_at(&self, index: usize) -> Option<&PairContact> {
+        self.blocks[index / BLOCK].get(self.slots[index])
+    }
+
+    /// Whether candidate `index` touches.
+    #[inline]
+    pub(crate) fn touches(&self, index: usize) -> bool {
+        self.slots[index] != NO_CONTACT
     }
 
     /// The touching pairs, in key order.
     pub fn touching(&self) -> impl Iterator<Item = (&ContactKey, &PairContact)> + '_ {
-        self.keys.iter().zip(&self.contacts).filter_map(|(k, c)| Some((k, c.as_deref()?)))
+        self.keys.iter().enumerate().filter_map(|(n, k)| Some((k, self.contact_at(n)?)))
     }
 
     /// The pair at `index` (of the candidates) as a [`Contact`], if it touches.
     pub(crate) fn contact(&self, model: &Model, index: usize) -> Option<Contact> {
-        let c = self.contacts[index].as_deref()?;
+        let c = self.contact_at(index)?;
         let key = &self.keys[index];
         let (site1, site2) = sites(model, key);
         Some(Contact {
@@ -250,14 +278,15 @@ impl NeighbourList {
 
     /// The key and contact of the touching pair at candidate index `index`.
     pub(crate) fn get(&self, index: usize) -> (&ContactKey, &PairContact) {
-        (&self.keys[index], self.contacts[index].as_deref().expect("a touching pair"))
+        (&self.keys[index], self.contact_at(index).expect("a touching pair"))
     }
 
     /// Ends every contact (the model changed): their friction and elastic energy are the
     /// caller's to account for.
     pub(crate) fn clear(&mut self) {
         self.keys.clear();
-        self.contacts.clear();
+        self.slots.clear();
+        self.blocks.clear();
         self.sums = None;
         self.generation = new_generation();
     }
@@ -296,34 +325,67 @@ impl NeighbourList {
     pub(crate) fn rebuild(&mut self, spheres: &[(u32, u32)], walls: &[(u32, u32)]) {
         self.generation = new_generation();
         let old_keys = std::mem::take(&mut self.keys);
-        let old_contacts = std::mem::take(&mut self.contacts);
-        let mut old =
-            old_keys.into_iter().zip(old_contacts).filter(|(_, c)| c.is_some()).peekable();
+        let old_slots = std::mem::take(&mut self.slots);
+        let old_blocks = std::mem::take(&mut self.blocks);
+        // the old touching pairs in key order: (key, old block, slot in it)
+        let mut old = old_keys
+            .into_iter()
+            .zip(old_slots)
+            .enumerate()
+            .filter(|(_, (_, s))| *s != NO_CONTACT)
+            .map(|(n, (k, s))| (k, n / BLOCK, s))
+            .peekable();
         let new = spheres
             .iter()
             .map(|&(i, j)| (Feature::Particle(i), Feature::Particle(j)))
             .chain(walls.iter().map(|&(w, i)| (Feature::Wall(w), Feature::Particle(i))));
+        // first the keys, and where each carried contact goes and comes from
+        let mut carried: Vec<(usize, usize, u32)> = Vec::new();
         self.keys.reserve(spheres.len() + walls.len());
-        self.contacts.reserve(spheres.len() + walls.len());
         for key in new {
-            while let Some((k, _)) = old.peek() {
-                if *k >= key {
+            while let Some(&(k, b, s)) = old.peek() {
+                if k >= key {
                     break;
                 }
-                let (k, c) = old.next().expect("peeked");
+                old.next();
+                carried.push((self.keys.len(), b, s));
                 self.keys.push(k);
-                self.contacts.push(c);
             }
-            let carried = match old.peek() {
-                Some((k, _)) if *k == key => old.next().and_then(|(_, c)| c),
-                _ => None,
-            };
+            if let Some(&(k, b, s)) = old.peek() {
+                if k == key {
+                    old.next();
+                    carried.push((self.keys.len(), b, s));
+                }
+            }
             self.keys.push(key);
-            self.contacts.push(carried);
         }
-        for (k, c) in old {
+        for (k, b, s) in old {
+            carried.push((self.keys.len(), b, s));
             self.keys.push(k);
-            self.contacts.push(c);
+        }
+        // then the contacts, laid out anew in key order, each block made with its count and
+        // room for births when its first contact comes, each old block dropped once passed
+        // (both in key order: the old and the new contacts are never all held at once)
+        let blocks = blocks_for(self.keys.len());
+        let mut count = vec![0usize; blocks];
+        carried.iter().for_each(|&(n, _, _)| count[n / BLOCK] += 1);
+        self.blocks.reserve_exact(blocks);
+        self.slots = vec![NO_CONTACT; self.keys.len()];
+        let mut old_blocks = old_blocks.into_iter().enumerate();
+        let mut current = old_blocks.next();
+        for (n, b, s) in carried {
+            while current.as_ref().is_some_and(|(index, _)| *index < b) {
+                current = old_blocks.next();
+            }
+            let from = current.as_ref().and_then(|(_, block)| block.get(s));
+            let contact = from.cloned().expect("a carried pair touches");
+            while self.blocks.len() <= n / BLOCK {
+                self.blocks.push(BlockContacts::with_room(count[self.blocks.len()]));
+            }
+            self.slots[n] = self.blocks[n / BLOCK].push_carried(contact);
+        }
+        while self.blocks.len() < blocks {
+            self.blocks.push(BlockContacts::with_room(count[self.blocks.len()]));
         }
     }
 }
@@ -343,25 +405,24 @@ pub(crate) fn apart(p: &Particles, key: &ContactKey) -> bool {
     }
 }
 
-/// One pair's step (see [`NeighbourList::update`]); what the law gave a pair that touches
-/// after it goes to `law`; with `spare`, an ended contact's box goes there and a new contact
-/// takes one from there if it can.
-#[allow(clippy::vec_box, reason = "the boxes are what is kept, to serve again")]
+/// One pair's step (see [`NeighbourList::update`]): `slot` is its index into `block`, the
+/// contacts of its block of candidates (see `pair_store.rs`); what the law gave a pair that
+/// touches after it goes to `law`.
 #[allow(clippy::too_many_arguments, reason = "one pair's inputs and its two outputs")]
 pub(crate) fn step_pair(
     model: &Model,
     k: &Kinematics<'_>,
     key: &ContactKey,
-    slot: &mut Option<Box<PairContact>>,
+    slot: &mut u32,
+    block: &mut BlockContacts<PairContact>,
     dt: Real,
-    mut spare: Option<&mut Vec<Box<PairContact>>>,
     out: &mut PairOutcome,
     law: &mut LawOut,
 ) {
     // the hot case, a sphere–sphere contact that goes on: one distance, and no candidate,
     // sites or owners (the general path below computes the same numbers: `Candidate`'s
     // overlap is r₁ + r₂ − |c₂ − c₁| too, and it then calls `sphere_geometry` alike)
-    if let ((Feature::Particle(i), Feature::Particle(j)), Some(c)) = (*key, slot.as_deref_mut()) {
+    if let ((Feature::Particle(i), Feature::Particle(j)), Some(c)) = (*key, block.get_mut(*slot)) {
         let p = &model.particles;
         let (i, j) = (i as usize, j as usize);
         if let Some(g) = sphere_geometry(p, i, j, &c.state.normal).filter(|g| g.overlap > 0.0) {
@@ -372,7 +433,7 @@ pub(crate) fn step_pair(
     }
     let touching = match *key {
         (Feature::Particle(i), Feature::Particle(j)) => {
-            if slot.is_none() && apart(&model.particles, key) {
+            if *slot == NO_CONTACT && apart(&model.particles, key) {
                 return;
             }
             sphere_touching(model, i, j)
@@ -381,7 +442,7 @@ pub(crate) fn step_pair(
         _ => None,
     };
     let (site1, site2) = sites(model, key);
-    match (touching, slot.as_deref()) {
+    match (touching, block.get(*slot)) {
         (Some(t), None) => {
             // a first touch (a free sphere's contact can be neither handed over nor split):
             // on time or late, as `ContactPipeline::settle_births` says
@@ -398,13 +459,7 @@ pub(crate) fn step_pair(
                 applied: AppliedForce::default(),
                 point: c.point,
             };
-            *slot = Some(match spare.as_mut().and_then(|s| s.pop()) {
-                Some(mut reused) => {
-                    *reused = made;
-                    reused
-                }
-                None => Box::new(made),
-            });
+            *slot = block.insert(made);
         }
         (None, Some(c)) => {
             out.ended_dissipation = c.state.dissipated_friction;
@@ -426,13 +481,12 @@ pub(crate) fn step_pair(
             } else {
                 out.released -= w;
             }
-            if let (Some(ended), Some(spare)) = (slot.take(), spare.as_mut()) {
-                spare.push(ended);
-            }
+            block.remove(*slot);
+            *slot = NO_CONTACT;
         }
         _ => {}
     }
-    if let Some(c) = slot.as_mut() {
+    if let Some(c) = block.get_mut(*slot) {
         let p = &model.particles;
         let (g, center1, center2) = match *key {
             (Feature::Particle(i), Feature::Particle(j)) => {
@@ -563,7 +617,7 @@ pub(crate) fn merged_from<'a>(
     mut n: usize,
 ) -> impl Iterator<Item = Pick> + 'a {
     std::iter::from_fn(move || {
-        while n < pairs.keys.len() && pairs.contacts[n].is_none() {
+        while n < pairs.keys.len() && !pairs.touches(n) {
             n += 1;
         }
         match (general.get(g), pairs.keys.get(n)) {
@@ -615,11 +669,11 @@ mod tests {
     use super::*;
 
     #[test]
-    fn a_candidate_costs_its_key_and_a_pointer_and_a_touching_pair_its_contact() {
+    fn a_candidate_costs_its_key_and_a_slot_and_a_touching_pair_its_contact() {
         use std::mem::size_of;
-        // the 4 to 5 candidates per sphere of a packing: 24 bytes each; the 1.5 to 2
+        // the 3 to 5 candidates per sphere of a packing: 20 bytes each; the 1.5 to 2
         // touching ones: a contact each besides (its size known: a change shows here)
-        assert_eq!(size_of::<ContactKey>() + size_of::<Option<Box<PairContact>>>(), 24);
+        assert_eq!(size_of::<ContactKey>() + size_of::<u32>(), 20);
         assert_eq!(size_of::<PairContact>(), 176);
     }
 
@@ -666,6 +720,13 @@ mod tests {
         }
     }
 
+    impl NeighbourList {
+        /// Makes candidate `index` touch with `contact`.
+        fn set(&mut self, index: usize, contact: PairContact) {
+            self.slots[index] = self.blocks[index / BLOCK].insert(contact);
+        }
+    }
+
     fn contact(point: Real) -> PairContact {
         PairContact {
             params: FrictionalParams { kn: 1.0, ks: 0.5, tan_phi: 0.3, cn: 0.0, ct: 0.0 },
@@ -680,8 +741,8 @@ mod tests {
         let mut list = NeighbourList::default();
         list.rebuild(&[(0, 1), (0, 2), (1, 2)], &[(0, 1)]);
         assert_eq!(list.candidates(), 4);
-        list.contacts[1] = Some(Box::new(contact(2.0))); // (0, 2)
-        list.contacts[3] = Some(Box::new(contact(3.0))); // wall 0, particle 1
+        list.set(1, contact(2.0)); // (0, 2)
+        list.set(3, contact(3.0)); // wall 0, particle 1
         list.rebuild(&[(0, 2), (2, 3)], &[]);
         let touching: Vec<_> = list.touching().map(|(k, c)| (*k, c.point.x)).collect();
         assert_eq!(
@@ -699,10 +760,10 @@ mod tests {
     fn saved_and_compared_as_its_touching_pairs() {
         let mut a = NeighbourList::default();
         a.rebuild(&[(0, 1), (1, 2)], &[]);
-        a.contacts[1] = Some(Box::new(contact(1.0)));
+        a.set(1, contact(1.0));
         let mut b = NeighbourList::default();
         b.rebuild(&[(1, 2)], &[(0, 0)]);
-        b.contacts[0] = Some(Box::new(contact(1.0)));
+        b.set(0, contact(1.0));
         assert_eq!(a, b);
         let saved: Vec<(ContactKey, PairContact)> = a.clone().into();
         assert_eq!(saved.len(), 1);

@@ -7,6 +7,7 @@
 use crate::contact::BirthReport;
 use crate::dashpots::pair_dashpot_power;
 use crate::neighbours::{apart, step_pair, LawOut, NeighbourList, PairContact, PairOutcome, Sink};
+use crate::pair_store::{BLOCK, NO_CONTACT};
 use flexdem_elements::virtual_sphere::{Feature, Kinematics, NodeLoad};
 use flexdem_elements::Model;
 use flexdem_geom::{Real, Vec3};
@@ -37,6 +38,9 @@ impl Pushed {
 /// Candidate pairs per chunk (fixed: the work is split the same way whatever the number of
 /// threads, and the sums are taken per chunk, then over the chunks in order).
 pub(crate) const PAIR_CHUNK: usize = 4096;
+
+/// A chunk holds whole blocks of the contacts' store.
+const _: () = assert!(PAIR_CHUNK % BLOCK == 0);
 
 /// What the pairs of one chunk added to the step's sums, each in pair order (from +0 for the
 /// births and ends, from −0 for the touching pairs' energy, as `Iterator::sum`).
@@ -163,10 +167,6 @@ pub(crate) struct PairScratch {
     /// Per candidate pair, where its outcome is in its chunk's list at the last parallel
     /// update (written for the pairs it stepped only).
     position: Vec<u32>,
-    /// The boxes of contacts that ended, for the next births (one thread): a birth takes one
-    /// instead of allocating.
-    #[allow(clippy::vec_box, reason = "the boxes are what is kept, to serve again")]
-    spare: Vec<Box<PairContact>>,
 }
 
 /// The chunks of `candidates` pairs, cleared (their buffers kept).
@@ -227,21 +227,24 @@ impl NeighbourList {
         let chunks = chunks_for(&mut scratch.chunks, self.keys.len());
         self.keys
             .par_chunks(PAIR_CHUNK)
-            .zip(self.contacts.par_chunks_mut(PAIR_CHUNK))
+            .zip(self.slots.par_chunks_mut(PAIR_CHUNK))
+            .zip(self.blocks.par_chunks_mut(PAIR_CHUNK / BLOCK))
             .zip(scratch.position.par_chunks_mut(PAIR_CHUNK))
             .zip(chunks.par_iter_mut())
             .enumerate()
-            .for_each(|(c, (((keys, slots), positions), out))| {
+            .for_each(|(c, ((((keys, slots), blocks), positions), out))| {
                 let base = c * PAIR_CHUNK;
+                blocks.iter_mut().zip(slots.chunks_mut(BLOCK)).for_each(|(b, s)| b.tidy(s));
                 for (i, (key, slot)) in keys.iter().zip(slots.iter_mut()).enumerate() {
-                    if slot.is_none() && apart(p, key) {
+                    if *slot == NO_CONTACT && apart(p, key) {
                         continue;
                     }
+                    let block = &mut blocks[i / BLOCK];
                     let mut o = PairOutcome::default();
                     let mut law = LawOut::default();
-                    step_pair(model, &k, key, slot, dt, None, &mut o, &mut law);
-                    out.book.record(base + i, &o, slot.as_deref(), &law);
-                    if slot.is_some() {
+                    step_pair(model, &k, key, slot, block, dt, &mut o, &mut law);
+                    out.book.record(base + i, &o, block.get(*slot), &law);
+                    if *slot != NO_CONTACT {
                         positions[i] = out.outcomes.len() as u32;
                         out.outcomes.push(((base + i) as u32, PairLoads::of(&o)));
                     }
@@ -267,19 +270,20 @@ impl NeighbourList {
         let p = &model.particles;
         let k = Kinematics { pos: &p.pos, vel: &p.vel, ang_vel: &p.ang_vel };
         let used = self.keys.len().div_ceil(PAIR_CHUNK);
-        let spare = &mut scratch.spare;
         let chunks = chunks_for(&mut scratch.chunks, self.keys.len());
-        for (n, (key, slot)) in self.keys.iter().zip(self.contacts.iter_mut()).enumerate() {
-            if slot.is_none() && apart(p, key) {
+        self.blocks.iter_mut().zip(self.slots.chunks_mut(BLOCK)).for_each(|(b, s)| b.tidy(s));
+        for (n, (key, slot)) in self.keys.iter().zip(self.slots.iter_mut()).enumerate() {
+            if *slot == NO_CONTACT && apart(p, key) {
                 // (what step_pair would say at more cost: nothing happened)
                 continue;
             }
+            let block = &mut self.blocks[n / BLOCK];
             let out = &mut chunks[n / PAIR_CHUNK];
             let mut o = PairOutcome::default();
             let mut law = LawOut::default();
-            step_pair(model, &k, key, slot, dt, Some(&mut *spare), &mut o, &mut law);
-            out.book.record(n, &o, slot.as_deref(), &law);
-            if slot.is_some() {
+            step_pair(model, &k, key, slot, block, dt, &mut o, &mut law);
+            out.book.record(n, &o, block.get(*slot), &law);
+            if *slot != NO_CONTACT {
                 sink(Sink::Before(key));
                 let first = usize::from(matches!(key.0, Feature::Wall(_)));
                 o.loads[first..].iter().for_each(|l| sink(Sink::Load(l)));
@@ -329,7 +333,9 @@ impl NeighbourList {
     /// ([`NeighbourList::update`]), if the pair touches.
     #[inline]
     pub(crate) fn load_of(&self, scratch: &PairScratch, n: usize, side: usize) -> Option<NodeLoad> {
-        self.contacts[n].as_ref()?;
+        if !self.touches(n) {
+            return None;
+        }
         let position = scratch.position[n] as usize;
         // (the node is not read: the caller sums into the particle it asked for)
         Some(scratch.chunks[n / PAIR_CHUNK].outcomes[position].1.load(side, u32::MAX))
@@ -355,9 +361,11 @@ impl NeighbourList {
     /// [`PAIR_CHUNK`] candidates and then over the chunks, as the updates sum them.
     pub(crate) fn chunked_energy_sums(&self) -> (Real, Real) {
         let mut total = ChunkSums::default();
-        for chunk in self.contacts.chunks(PAIR_CHUNK) {
+        for (c, chunk) in self.slots.chunks(PAIR_CHUNK).enumerate() {
             let mut sums = ChunkSums::default();
-            chunk.iter().flatten().for_each(|c| sums.add_touching(c, c.elastic_energy()));
+            let base = c * PAIR_CHUNK;
+            let touching = (0..chunk.len()).filter_map(|i| self.contact_at(base + i));
+            touching.for_each(|c| sums.add_touching(c, c.elastic_energy()));
             total.elastic += sums.elastic;
             total.friction += sums.friction;
         }
