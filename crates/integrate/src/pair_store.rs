@@ -102,18 +102,22 @@ impl<C: Clone> BlockContacts<C> {
     /// a packing whose candidates are not rebuilt for thousands of steps (a settled one, or
     /// one whose contacts all came after the first build) would keep them so. Stepped in
     /// key order, contacts in key order are read in the order of memory, which the
-    /// processor fetches ahead.
-    pub(crate) fn tidy(&mut self, slots: &mut [u32]) {
+    /// processor fetches ahead. `laid` is a buffer the caller keeps (no allocation once it
+    /// has held a block), the block keeps its array.
+    pub(crate) fn tidy(&mut self, slots: &mut [u32], laid: &mut Vec<C>) {
         let live = self.contacts.len() - self.holes.len();
         if (self.births as usize) < headroom(live) {
             return;
         }
-        let mut laid = Vec::with_capacity(live + headroom(live));
+        laid.clear();
         for slot in slots.iter_mut().filter(|s| **s != NO_CONTACT) {
             laid.push(self.contacts[*slot as usize].clone());
             *slot = (laid.len() - 1) as u32;
         }
-        *self = BlockContacts { contacts: laid, holes: Vec::new(), births: 0 };
+        self.contacts.clear();
+        self.contacts.extend_from_slice(laid);
+        self.holes.clear();
+        self.births = 0;
     }
 }
 
@@ -170,7 +174,7 @@ mod tests {
         }
         block.remove(slots[5]);
         slots[5] = NO_CONTACT;
-        block.tidy(&mut slots);
+        block.tidy(&mut slots, &mut Vec::new());
         let live: Vec<u32> = slots.iter().copied().filter(|&s| s != NO_CONTACT).collect();
         assert_eq!(live, (0..11).collect::<Vec<u32>>());
         let points: Vec<f64> = slots.iter().filter_map(|&s| Some(block.get(s)?.x())).collect();
@@ -180,7 +184,7 @@ mod tests {
         let before = slots.clone();
         block.remove(slots[0]);
         slots[0] = block.insert(contact(0.5));
-        block.tidy(&mut slots);
+        block.tidy(&mut slots, &mut Vec::new());
         assert_eq!((slots, block.births), (before, 1));
     }
 
