@@ -19,6 +19,39 @@ pub fn write_spheres(spheres: &[(Vec3, Real)]) -> String {
     out
 }
 
+/// Puts spheres in the order of space: by the Morton code (bits of the x, y and z cell
+/// indices interleaved) of the cell of side 2·r_max holding each centre, ties kept in the
+/// order given. A run keeps the file's order as its particles' order, and the contact pass
+/// reads each pair's particles and adds into their forces: with neighbours near in the
+/// file, near in memory, those reads hit the cache (spheres in random order made the LAMMPS
+/// twin's step 13–25 % slower). Positions and radii are unchanged.
+pub fn in_space_order(spheres: &mut [(Vec3, Real)]) {
+    let Some(r_max) = spheres.iter().map(|s| s.1).reduce(Real::max) else { return };
+    let lo = spheres.iter().fold(Vec3::repeat(Real::INFINITY), |m, s| m.inf(&s.0));
+    let side = 2.0 * r_max;
+    // 21 bits per axis (2 million cells a side); a larger or non-finite cell index clamps
+    let cell = |x: Real, lo: Real| {
+        let c = ((x - lo) / side).floor();
+        if c.is_finite() {
+            c.clamp(0.0, ((1u64 << 21) - 1) as Real) as u64
+        } else {
+            0
+        }
+    };
+    let code = |c: &Vec3| {
+        let spread = |mut v: u64| {
+            v &= 0x1f_ffff;
+            v = (v | v << 32) & 0x1f_0000_0000_ffff;
+            v = (v | v << 16) & 0x1f_0000_ff00_00ff;
+            v = (v | v << 8) & 0x100f_00f0_0f00_f00f;
+            v = (v | v << 4) & 0x10c3_0c30_c30c_30c3;
+            (v | v << 2) & 0x1249_2492_4924_9249
+        };
+        spread(cell(c.x, lo.x)) | spread(cell(c.y, lo.y)) << 1 | spread(cell(c.z, lo.z)) << 2
+    };
+    spheres.sort_by_cached_key(|s| code(&s.0));
+}
+
 /// Reads a sphere file (see the module's doc). Blank lines and lines starting with `#` are
 /// skipped; an error names the line and what is wrong.
 pub fn read_spheres(text: &str) -> Result<Vec<(Vec3, Real)>, String> {
@@ -80,6 +113,36 @@ mod tests {
         let s =
             vec![(Vec3::new(0.1, -2.0 / 3.0, 1e-9), 0.003), (Vec3::new(1.0, 2.0, 3.0), 1.0 / 7.0)];
         assert_eq!(read_spheres(&write_spheres(&s)).unwrap(), s);
+    }
+
+    #[test]
+    fn spheres_in_space_order_are_those_given_with_neighbours_near() {
+        // a 4 × 4 × 4 lattice of spacing 2r in a scrambled order
+        let r = 0.5;
+        let mut spheres: Vec<(Vec3, Real)> = (0..64)
+            .map(|k| (k * 37) % 64)
+            .map(|k| (Vec3::new((k % 4) as Real, (k / 4 % 4) as Real, (k / 16) as Real), r))
+            .collect();
+        let mut given = spheres.clone();
+        in_space_order(&mut spheres);
+        // the same spheres
+        let key = |s: &(Vec3, Real)| (s.0.x, s.0.y, s.0.z);
+        given.sort_by(|a, b| key(a).partial_cmp(&key(b)).unwrap());
+        let mut sorted = spheres.clone();
+        sorted.sort_by(|a, b| key(a).partial_cmp(&key(b)).unwrap());
+        assert_eq!(sorted, given);
+        // Morton order: each octant of 2 × 2 × 2 cells is 8 spheres in a row, and the first
+        // is the corner
+        assert_eq!(spheres[0].0, Vec3::zeros());
+        for octant in spheres.chunks(8) {
+            let corner = octant[0].0.map(|x| (x / 2.0).floor());
+            assert!(octant.iter().all(|s| s.0.map(|x| (x / 2.0).floor()) == corner));
+        }
+        // nothing to order, one sphere, a NaN: no panic
+        in_space_order(&mut []);
+        let mut odd = vec![(Vec3::repeat(Real::NAN), 1.0), (Vec3::zeros(), 1.0)];
+        in_space_order(&mut odd);
+        assert_eq!(odd.len(), 2);
     }
 
     #[test]
