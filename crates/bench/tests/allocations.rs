@@ -38,7 +38,7 @@ fn steps_allocate_nothing() {
     ] {
         let per_step = allocations_per_step(scene, 300, 1000);
         println!("{name}: {per_step} allocations per step");
-        // the packing and the membrane settle: next to nothing (measured 0.039 and 0.009:
+        // the packing and the membrane settle: next to nothing (measured 0.069 and 0.009:
         // the packing's neighbour list lays its contacts out anew at each rebuild of the
         // candidates, a few arrays each time; a buffer growing once or twice); the tube is
         // crushed all along, its buffers grow with it (0.064)

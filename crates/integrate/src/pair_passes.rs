@@ -128,9 +128,6 @@ struct ChunkOut {
     outcomes: Vec<(u32, PairLoads)>,
     /// What its pairs added to the step's records.
     book: ChunkBook,
-    /// Where its blocks' contacts are laid out anew (`BlockContacts::tidy`), kept so that a
-    /// layout allocates nothing.
-    laid: Vec<PairContact>,
 }
 
 /// What the pairs of one chunk added to the step's records, in pair order (both passes).
@@ -237,8 +234,7 @@ impl NeighbourList {
             .enumerate()
             .for_each(|(c, ((((keys, slots), blocks), positions), out))| {
                 let base = c * PAIR_CHUNK;
-                let laid = &mut out.laid;
-                blocks.iter_mut().zip(slots.chunks_mut(BLOCK)).for_each(|(b, s)| b.tidy(s, laid));
+                blocks.iter_mut().zip(slots.chunks_mut(BLOCK)).for_each(|(b, s)| b.tidy(s));
                 for (i, (key, slot)) in keys.iter().zip(slots.iter_mut()).enumerate() {
                     if *slot == NO_CONTACT && apart(p, key) {
                         continue;
@@ -275,11 +271,7 @@ impl NeighbourList {
         let k = Kinematics { pos: &p.pos, vel: &p.vel, ang_vel: &p.ang_vel };
         let used = self.keys.len().div_ceil(PAIR_CHUNK);
         let chunks = chunks_for(&mut scratch.chunks, self.keys.len());
-        if let Some(first) = chunks.first_mut() {
-            let laid = &mut first.laid;
-            let blocks = self.blocks.iter_mut().zip(self.slots.chunks_mut(BLOCK));
-            blocks.for_each(|(b, s)| b.tidy(s, laid));
-        }
+        self.blocks.iter_mut().zip(self.slots.chunks_mut(BLOCK)).for_each(|(b, s)| b.tidy(s));
         for (n, (key, slot)) in self.keys.iter().zip(self.slots.iter_mut()).enumerate() {
             if *slot == NO_CONTACT && apart(p, key) {
                 // (what step_pair would say at more cost: nothing happened)
