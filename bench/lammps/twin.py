@@ -97,7 +97,9 @@ solid_fraction = {SOLID_FRACTION!r}
 seed = 1
 """)
     csv = os.path.join(a.out, "spheres.csv")
-    if not os.path.exists(csv):
+    # made once per flexdem binary: a file of an older binary may be in another order (since
+    # 9d1ff55 `flexdem spheres` writes them in the order of space), which changes the speed
+    if not os.path.exists(csv) or os.path.getmtime(csv) < os.path.getmtime(a.flexdem):
         subprocess.run([a.flexdem, "spheres", os.path.join(a.out, "pack.toml"), "-o", csv],
                        check=True)
     spheres = []
