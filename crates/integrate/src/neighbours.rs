@@ -131,17 +131,17 @@ fn new_generation() -> u64 {
 
 impl From<Vec<(ContactKey, PairContact)>> for NeighbourList {
     fn from(touching: Vec<(ContactKey, PairContact)>) -> Self {
-        let touching_len = touching.len();
+        let count = touching.len();
         let mut list = NeighbourList {
-            keys: Vec::with_capacity(touching.len()),
-            slots: Vec::with_capacity(touching.len()),
-            blocks: Vec::with_capacity(blocks_for(touching.len())),
+            keys: Vec::with_capacity(count),
+            slots: Vec::with_capacity(count),
+            blocks: Vec::with_capacity(blocks_for(count)),
             sums: None,
             generation: new_generation(),
         };
         for (n, (key, contact)) in touching.into_iter().enumerate() {
             if n % BLOCK == 0 {
-                list.blocks.push(BlockContacts::with_room(BLOCK.min(touching_len - n)));
+                list.blocks.push(BlockContacts::with_room(BLOCK.min(count - n)));
             }
             list.keys.push(key);
             list.slots.push(list.blocks[n / BLOCK].push_carried(contact));
