@@ -35,7 +35,7 @@ impl<C> Default for BlockContacts<C> {
     }
 }
 
-impl<C: Clone> BlockContacts<C> {
+impl<C> BlockContacts<C> {
     /// An empty block with room for `n` contacts and a few births ([`room_for_births`]).
     pub(crate) fn with_room(n: usize) -> Self {
         BlockContacts {
@@ -93,9 +93,7 @@ impl<C: Clone> BlockContacts<C> {
         self.contacts.push(contact);
         (self.contacts.len() - 1) as u32
     }
-}
 
-impl<C: Clone> BlockContacts<C> {
     /// Lays the block's contacts out anew in key order (`slots`, the block's candidates'
     /// slots, are renumbered) once an eighth of them (and at least 8) were born since the
     /// last layout: births go where ends left a place or at the end, out of key order, and
@@ -152,7 +150,8 @@ fn room_for_births(n: usize) -> usize {
     (n / 32).max(4)
 }
 
-/// Room for births in a block of `n` contacts: an eighth more, at least 8.
+/// An eighth of a block of `n` contacts, at least 8: what a full block grows by, and the
+/// births that call for a new layout.
 fn headroom(n: usize) -> usize {
     (n / 8).max(8)
 }
