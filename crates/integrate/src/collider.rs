@@ -242,8 +242,15 @@ impl Collider {
                 && !Self::nodes(model, a).iter().any(|n| Self::nodes(model, b).contains(n))
                 && !model.self_contact_off(Self::structure(model, a), Self::structure(model, b))
         };
-        self.broad.overlapping_pairs(&self.boxes, accept, &mut self.pairs);
-        self.split_sphere_pairs();
+        let two_spheres = |i: u32, j: u32| {
+            matches!(
+                (elements[i as usize], elements[j as usize]),
+                (Element::Particle(_), Element::Particle(_))
+            )
+        };
+        let (spheres, pairs) = (&mut self.sphere_pairs, &mut self.pairs);
+        self.broad.overlapping_pairs_split(&self.boxes, accept, two_spheres, spheres, pairs);
+        self.name_sphere_pairs();
 
         self.wall_pairs.clear();
         self.sphere_wall_pairs.clear();
@@ -266,23 +273,20 @@ impl Collider {
         self.builds += 1;
     }
 
-    /// Moves the pairs of two free spheres from `pairs` to `sphere_pairs` (as particle ids;
-    /// the broad phase kept those whose centres are within the sum of their radii and
-    /// margins). Free spheres come first among the elements, in particle order, so both lists
-    /// stay sorted.
-    fn split_sphere_pairs(&mut self) {
+    /// Names the pairs of two free spheres (`sphere_pairs`, from the broad phase as element
+    /// indices) by their particle ids (the broad phase kept those whose centres are within
+    /// the sum of their radii and margins). Free spheres come first among the elements, in
+    /// particle order, so the list stays sorted. Marks the elements of the other pairs.
+    fn name_sphere_pairs(&mut self) {
         let elements = &self.elements;
-        let spheres = &mut self.sphere_pairs;
-        spheres.clear();
-        self.pairs.retain(|&(a, b)| {
+        for pair in &mut self.sphere_pairs {
             let (Element::Particle(i), Element::Particle(j)) =
-                (elements[a as usize], elements[b as usize])
+                (elements[pair.0 as usize], elements[pair.1 as usize])
             else {
-                return true;
+                unreachable!("the broad phase wrote only pairs of two free spheres here");
             };
-            spheres.push((i, j));
-            false
-        });
+            *pair = (i, j);
+        }
         self.paired.clear();
         self.paired.resize(elements.len(), false);
         for &(a, b) in &self.pairs {
