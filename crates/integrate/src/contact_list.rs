@@ -91,7 +91,7 @@ impl Contacts {
                 }
                 Pick::Pair(n) => {
                     let (key, c) = self.pairs.get(n);
-                    (*key, c.force_on_2(), c.applied.normal_force, c.params.kn)
+                    (key, c.force_on_2(), c.applied.normal_force, c.params.kn)
                 }
             };
             if let Feature::Wall(w) = key.0 {
@@ -115,7 +115,7 @@ impl Contacts {
                 }
                 Pick::Pair(n) => {
                     let (key, c) = self.pairs.get(n);
-                    let (site1, site2) = sites(model, key);
+                    let (site1, site2) = sites(model, &key);
                     f(&site1, &site2, &c.params, &c.state.normal);
                 }
             }

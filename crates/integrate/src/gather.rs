@@ -128,7 +128,7 @@ impl LoadIndex {
         let keys = pairs.keys();
         let general_key = |code: u32| list[(code / 8) as usize].key();
         let general_load = |code: u32| &loads[(code / 8) as usize][(code % 8) as usize];
-        let pair_key = |code: u32| keys[(code / 2) as usize];
+        let pair_key = |code: u32| keys.get((code / 2) as usize);
         let pair_load =
             |code: u32| pairs.load_of(scratch, (code / 2) as usize, (code % 2) as usize);
         force.par_chunks_mut(CHUNK).zip(torque.par_chunks_mut(CHUNK)).enumerate().for_each(

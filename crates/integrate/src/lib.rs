@@ -18,6 +18,7 @@ mod links;
 mod measures;
 mod neighbours;
 mod offsets;
+mod pair_keys;
 mod pair_passes;
 mod pair_store;
 mod parallel;

@@ -18,6 +18,7 @@ use crate::contact::{
     SPHERE_OWNER, WALL_OWNER,
 };
 use crate::dashpots::shear_exit;
+use crate::pair_keys::PairKeys;
 use crate::pair_store::{blocks_for, BlockContacts, BLOCK, NO_CONTACT};
 use flexdem_contact::{
     spring_energy, spring_energy_squared, update_frictional_contact, ContactForces,
@@ -106,7 +107,7 @@ impl PairContact {
 #[derive(Clone, Debug, Default, Serialize, Deserialize)]
 #[serde(from = "Vec<(ContactKey, PairContact)>", into = "Vec<(ContactKey, PairContact)>")]
 pub struct NeighbourList {
-    pub(crate) keys: Vec<ContactKey>,
+    pub(crate) keys: PairKeys,
     /// One per key: the index of its contact in its block's array while it touches, else
     /// [`NO_CONTACT`] (most candidates do not touch: 4 bytes each, see `pair_store.rs`).
     pub(crate) slots: Vec<u32>,
@@ -133,7 +134,7 @@ impl From<Vec<(ContactKey, PairContact)>> for NeighbourList {
     fn from(touching: Vec<(ContactKey, PairContact)>) -> Self {
         let count = touching.len();
         let mut list = NeighbourList {
-            keys: Vec::with_capacity(count),
+            keys: PairKeys::with_capacity(count),
             slots: Vec::with_capacity(count),
             blocks: Vec::with_capacity(blocks_for(count)),
             sums: None,
@@ -152,7 +153,7 @@ impl From<Vec<(ContactKey, PairContact)>> for NeighbourList {
 
 impl From<NeighbourList> for Vec<(ContactKey, PairContact)> {
     fn from(list: NeighbourList) -> Self {
-        list.touching().map(|(k, c)| (*k, c.clone())).collect()
+        list.touching().map(|(k, c)| (k, c.clone())).collect()
     }
 }
 
@@ -256,14 +257,14 @@ impl NeighbourList {
     }
 
     /// The touching pairs, in key order.
-    pub fn touching(&self) -> impl Iterator<Item = (&ContactKey, &PairContact)> + '_ {
+    pub fn touching(&self) -> impl Iterator<Item = (ContactKey, &PairContact)> + '_ {
         self.keys.iter().enumerate().filter_map(|(n, k)| Some((k, self.contact_at(n)?)))
     }
 
     /// The pair at `index` (of the candidates) as a [`Contact`], if it touches.
     pub(crate) fn contact(&self, model: &Model, index: usize) -> Option<Contact> {
         let c = self.contact_at(index)?;
-        let key = &self.keys[index];
+        let key = &self.keys.get(index);
         let (site1, site2) = sites(model, key);
         Some(Contact {
             site1,
@@ -277,8 +278,8 @@ impl NeighbourList {
     }
 
     /// The key and contact of the touching pair at candidate index `index`.
-    pub(crate) fn get(&self, index: usize) -> (&ContactKey, &PairContact) {
-        (&self.keys[index], self.contact_at(index).expect("a touching pair"))
+    pub(crate) fn get(&self, index: usize) -> (ContactKey, &PairContact) {
+        (self.keys.get(index), self.contact_at(index).expect("a touching pair"))
     }
 
     /// Ends every contact (the model changed): their friction and elastic energy are the
@@ -292,7 +293,7 @@ impl NeighbourList {
     }
 
     /// The keys of the candidate pairs, sorted.
-    pub(crate) fn keys(&self) -> &[ContactKey] {
+    pub(crate) fn keys(&self) -> &PairKeys {
         &self.keys
     }
 
@@ -303,19 +304,13 @@ impl NeighbourList {
 
     /// The index of the first candidate with a wall (the keys sort walls last).
     pub(crate) fn first_wall(&self) -> usize {
-        self.keys.partition_point(|k| !matches!(k.0, Feature::Wall(_)))
+        self.keys.first_wall()
     }
 
     /// Whether every pair refers to particles and walls of a model of `particles` particles
     /// and `walls` walls, free spheres against free spheres or walls.
     pub(crate) fn fits(&self, particles: usize, walls: usize) -> bool {
-        self.keys.iter().all(|k| match k {
-            (Feature::Particle(i), Feature::Particle(j)) => i < j && (*j as usize) < particles,
-            (Feature::Wall(w), Feature::Particle(i)) => {
-                (*w as usize) < walls && (*i as usize) < particles
-            }
-            _ => false,
-        }) && self.keys.windows(2).all(|w| w[0] < w[1])
+        self.keys.fits(particles, walls)
     }
 
     /// The candidates of a new build of the collider: `spheres` (particle pairs, sorted) and
@@ -329,7 +324,7 @@ impl NeighbourList {
         let old_blocks = std::mem::take(&mut self.blocks);
         // the old touching pairs in key order: (key, old block, slot in it)
         let mut old = old_keys
-            .into_iter()
+            .iter()
             .zip(old_slots)
             .enumerate()
             .filter(|(_, (_, s))| *s != NO_CONTACT)
@@ -363,6 +358,9 @@ impl NeighbourList {
             carried.push((self.keys.len(), b, s));
             self.keys.push(k);
         }
+        // (a touching pair the new candidates lack, pushed past the room made for them,
+        // doubled the keys' room)
+        self.keys.shrink_spare();
         // then the contacts, laid out anew in key order, each block made with its count and
         // room for births when its first contact comes, each old block dropped once passed
         // (both in key order: the old and the new contacts are never all held at once)
@@ -620,8 +618,8 @@ pub(crate) fn merged_from<'a>(
         while n < pairs.keys.len() && !pairs.touches(n) {
             n += 1;
         }
-        match (general.get(g), pairs.keys.get(n)) {
-            (Some(c), Some(key)) if c.key() < *key => {
+        match (general.get(g), pairs.keys.try_get(n)) {
+            (Some(c), Some(key)) if c.key() < key => {
                 g += 1;
                 Some(Pick::General(g - 1))
             }
@@ -649,7 +647,7 @@ pub(crate) fn merged_fresh<'a>(
     let (mut a, mut b) = (0, 0);
     std::iter::from_fn(move || {
         let take_general = match (fresh_general.get(a), fresh_pairs.get(b)) {
-            (Some(&g), Some(&n)) => general[g].key() < pairs.keys[n],
+            (Some(&g), Some(&n)) => general[g].key() < pairs.keys.get(n),
             (Some(_), None) => true,
             (None, Some(_)) => false,
             (None, None) => return None,
@@ -671,9 +669,10 @@ mod tests {
     #[test]
     fn a_candidate_costs_its_key_and_a_slot_and_a_touching_pair_its_contact() {
         use std::mem::size_of;
-        // the 3 to 5 candidates per sphere of a packing: 20 bytes each; the 1.5 to 2
-        // touching ones: a contact each besides (its size known: a change shows here)
-        assert_eq!(size_of::<ContactKey>() + size_of::<u32>(), 20);
+        // the 3 to 5 candidates per sphere of a packing: 12 bytes each (two ids and a
+        // slot, `pair_keys.rs`); the 1.5 to 2 touching ones: a contact each besides (its
+        // size known: a change shows here)
+        assert_eq!(size_of::<(u32, u32)>() + size_of::<u32>(), 12);
         assert_eq!(size_of::<PairContact>(), 176);
     }
 
@@ -744,7 +743,7 @@ mod tests {
         list.set(1, contact(2.0)); // (0, 2)
         list.set(3, contact(3.0)); // wall 0, particle 1
         list.rebuild(&[(0, 2), (2, 3)], &[]);
-        let touching: Vec<_> = list.touching().map(|(k, c)| (*k, c.point.x)).collect();
+        let touching: Vec<_> = list.touching().map(|(k, c)| (k, c.point.x)).collect();
         assert_eq!(
             touching,
             vec![

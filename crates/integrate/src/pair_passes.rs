@@ -7,6 +7,7 @@
 use crate::contact::BirthReport;
 use crate::dashpots::pair_dashpot_power;
 use crate::neighbours::{apart, step_pair, LawOut, NeighbourList, PairContact, PairOutcome, Sink};
+use crate::pair_keys::key_at;
 use crate::pair_store::{BLOCK, NO_CONTACT};
 use flexdem_elements::virtual_sphere::{Feature, Kinematics, NodeLoad};
 use flexdem_elements::Model;
@@ -225,7 +226,9 @@ impl NeighbourList {
         let used = self.keys.len().div_ceil(PAIR_CHUNK);
         scratch.position.resize(self.keys.len(), 0);
         let chunks = chunks_for(&mut scratch.chunks, self.keys.len());
+        let first_wall = self.keys.first_wall();
         self.keys
+            .ids()
             .par_chunks(PAIR_CHUNK)
             .zip(self.slots.par_chunks_mut(PAIR_CHUNK))
             .zip(self.blocks.par_chunks_mut(PAIR_CHUNK / BLOCK))
@@ -235,7 +238,8 @@ impl NeighbourList {
             .for_each(|(c, ((((keys, slots), blocks), positions), out))| {
                 let base = c * PAIR_CHUNK;
                 blocks.iter_mut().zip(slots.chunks_mut(BLOCK)).for_each(|(b, s)| b.tidy(s));
-                for (i, (key, slot)) in keys.iter().zip(slots.iter_mut()).enumerate() {
+                for (i, (&ids, slot)) in keys.iter().zip(slots.iter_mut()).enumerate() {
+                    let key = &key_at(first_wall, base + i, ids);
                     if *slot == NO_CONTACT && apart(p, key) {
                         continue;
                     }
@@ -273,6 +277,7 @@ impl NeighbourList {
         let chunks = chunks_for(&mut scratch.chunks, self.keys.len());
         self.blocks.iter_mut().zip(self.slots.chunks_mut(BLOCK)).for_each(|(b, s)| b.tidy(s));
         for (n, (key, slot)) in self.keys.iter().zip(self.slots.iter_mut()).enumerate() {
+            let key = &key;
             if *slot == NO_CONTACT && apart(p, key) {
                 // (what step_pair would say at more cost: nothing happened)
                 continue;
@@ -303,7 +308,8 @@ impl NeighbourList {
         let used = self.keys.len().div_ceil(PAIR_CHUNK).min(scratch.chunks.len());
         for d in scratch.chunks[..used].iter().flat_map(|c| &c.book.pushed) {
             law += d.viscous;
-            power += pair_dashpot_power(&self.keys[d.index as usize], &d.force, &d.moments, model);
+            power +=
+                pair_dashpot_power(&self.keys.get(d.index as usize), &d.force, &d.moments, model);
         }
         (law, power)
     }
@@ -317,7 +323,7 @@ impl NeighbourList {
         let used = self.keys.len().div_ceil(PAIR_CHUNK);
         scratch.chunks[..used.min(scratch.chunks.len())].iter().flat_map(|c| &c.outcomes).map(
             move |&(n, loads)| {
-                let (body_1, body_2) = self.keys[n as usize];
+                let (body_1, body_2) = self.keys.get(n as usize);
                 let node = |f: Feature| match f {
                     Feature::Particle(i) => Some(i),
                     _ => None,

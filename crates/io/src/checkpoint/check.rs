@@ -125,7 +125,7 @@ pub(crate) fn check_state(s: &State) -> Result<(), String> {
         check_contact(s, c).map_err(|e| format!("contact {i}: {e}"))?;
     }
     for (i, (key, c)) in s.contacts.pairs.touching().enumerate() {
-        check_pair(s, key, c).map_err(|e| format!("contact {i} of the free spheres: {e}"))?;
+        check_pair(s, &key, c).map_err(|e| format!("contact {i} of the free spheres: {e}"))?;
     }
     for (i, l) in s.loads.iter().enumerate() {
         check_load(l).map_err(|e| format!("load {i}: {e}"))?;
