@@ -20,7 +20,6 @@ pub struct BroadPhase {
     /// (cell, box) entries, packed ([`Packing`]).
     entries: Vec<u64>,
     large: Vec<u32>,
-    chunks: Vec<Vec<(u32, u32)>>,
     /// Where each cell's entries start, then their end.
     starts: Vec<usize>,
     /// Fewer bits for the entries than 64 (tests of cells that share a key).
@@ -138,6 +137,56 @@ fn from_total_order_bits(b: u64) -> Real {
     Real::from_bits(if b >> 63 == 1 { b & !(1 << 63) } else { !b })
 }
 
+/// The sorted cell entries of a build and where each cell's run of them starts.
+struct Cells<'a> {
+    entries: &'a [u64],
+    /// Where each cell's entries start, then their end.
+    starts: &'a [usize],
+    packing: Packing,
+    origin: Vec3,
+    inv_h: Real,
+}
+
+impl Cells<'_> {
+    /// Calls `found(i, j)`, `i < j`, for each pair of boxes that share one of the cells
+    /// `cells` (indices into `starts`), intersect and that `accept` accepts, reported only by
+    /// the cell that holds the minimum corner of their intersection (so once).
+    fn pairs<F>(
+        &self,
+        cells: std::ops::Range<usize>,
+        boxes: &[Aabb],
+        accept: &F,
+        mut found: impl FnMut(u32, u32),
+    ) where
+        F: Fn(u32, u32) -> bool,
+    {
+        let Cells { entries, starts, packing, origin, inv_h } = self;
+        for b in cells {
+            let (s, e) = (starts[b], starts[b + 1]);
+            let key = packing.key_of(entries[s]);
+            for a in s..e {
+                let i = packing.index_of(entries[a]);
+                let bi = &boxes[i as usize];
+                for &other in &entries[a + 1..e] {
+                    let j = packing.index_of(other);
+                    let bj = &boxes[j as usize];
+                    if !bi.intersects(bj) {
+                        continue;
+                    }
+                    let corner = bi.mins.sup(&bj.mins);
+                    if packing.key(cell_of(&corner, origin, *inv_h)) != key {
+                        continue;
+                    }
+                    let (p, q) = if i < j { (i, j) } else { (j, i) };
+                    if accept(p, q) {
+                        found(p, q);
+                    }
+                }
+            }
+        }
+    }
+}
+
 impl BroadPhase {
     /// Writes into `pairs` every pair `(i, j)`, `i < j`, of boxes that intersect (closed
     /// boxes) and that `accept(i, j)` accepts, sorted and each once. `accept` carries the
@@ -156,6 +205,10 @@ impl BroadPhase {
     /// its room kept from build to build and grown to the count exactly: the collider's
     /// pairs of free spheres go straight to their own list (written to one list and moved
     /// to the other, a packing of 10⁵ spheres held both lists' room, 84 bytes per sphere).
+    /// The pairs are found twice, counted then written in place: each chunk of cells wrote
+    /// to a buffer of its own, and those buffers, grown by doubling and kept for the next
+    /// build, held 37 bytes per sphere of a packing; the second search costs about 0.1 % of
+    /// a packing's step (builds went from 1.65 % to 1.7 % of the step at 10⁵ spheres).
     pub fn overlapping_pairs_split<F, G>(
         &mut self,
         boxes: &[Aabb],
@@ -165,7 +218,7 @@ impl BroadPhase {
         rest: &mut Vec<(u32, u32)>,
     ) where
         F: Fn(u32, u32) -> bool + Sync,
-        G: Fn(u32, u32) -> bool,
+        G: Fn(u32, u32) -> bool + Sync,
     {
         firsts.clear();
         rest.clear();
@@ -217,8 +270,7 @@ impl BroadPhase {
         }
         self.entries.par_sort_unstable();
 
-        // bucket boundaries, then pair tests per bucket in parallel, in bucket order
-        // (the buffers keep their memory from build to build: no allocation once grown)
+        // bucket boundaries (the buffers keep their memory from build to build)
         let entries = &self.entries;
         let starts = &mut self.starts;
         starts.clear();
@@ -227,56 +279,9 @@ impl BroadPhase {
                 .filter(|&k| k == 0 || packing.key_of(entries[k]) != packing.key_of(entries[k - 1]))
                 .chain(std::iter::once(entries.len())),
         );
-        let chunk = (starts.len() / (4 * rayon::current_num_threads()).max(1)).max(64);
-        // bucket b is entries[starts[b]..starts[b + 1]]; chunk c holds buckets c·chunk to
-        // (c + 1)·chunk
-        let buckets = starts.len() - 1;
-        let starts = &self.starts;
-        let used = buckets.div_ceil(chunk);
-        if self.chunks.len() < used {
-            self.chunks.resize_with(used, Vec::new);
-        }
-        self.chunks[..used].par_iter_mut().enumerate().for_each(|(c, out)| {
-            out.clear();
-            for b in c * chunk..((c + 1) * chunk).min(buckets) {
-                let (s, e) = (starts[b], starts[b + 1]);
-                let key = packing.key_of(entries[s]);
-                for a in s..e {
-                    let i = packing.index_of(entries[a]);
-                    let bi = &boxes[i as usize];
-                    for &other in &entries[a + 1..e] {
-                        let j = packing.index_of(other);
-                        let bj = &boxes[j as usize];
-                        if !bi.intersects(bj) {
-                            continue;
-                        }
-                        // report only in the cell of the intersection's minimum corner
-                        let corner = bi.mins.sup(&bj.mins);
-                        if packing.key(cell_of(&corner, &origin, inv_h)) != key {
-                            continue;
-                        }
-                        let (p, q) = if i < j { (i, j) } else { (j, i) };
-                        if accept(p, q) {
-                            out.push((p, q));
-                        }
-                    }
-                }
-            }
-        });
-        let found = &self.chunks[..used];
-        let firsts_count = found.iter().flatten().filter(|&&(i, j)| is_first(i, j)).count();
-        let total: usize = found.iter().map(Vec::len).sum();
-        firsts.reserve_exact(firsts_count);
-        rest.reserve_exact(total - firsts_count);
-        let mut write = |pair: (u32, u32)| {
-            if is_first(pair.0, pair.1) {
-                firsts.push(pair);
-            } else {
-                rest.push(pair);
-            }
-        };
-        found.iter().flatten().for_each(|&pair| write(pair));
+        let cells = Cells { entries, starts: &self.starts, packing, origin, inv_h };
         // large boxes against every box (each large-large pair once)
+        let mut large_pairs = Vec::new();
         for (n, &i) in self.large.iter().enumerate() {
             let bi = &boxes[i as usize];
             for (j, bj) in boxes.iter().enumerate() {
@@ -286,8 +291,65 @@ impl BroadPhase {
                 }
                 let (p, q) = if i < j { (i, j) } else { (j, i) };
                 if accept(p, q) {
-                    write((p, q));
+                    large_pairs.push((p, q));
                 }
+            }
+        }
+        // chunk c holds buckets c·chunk to (c + 1)·chunk; each chunk's pairs are counted,
+        // then written in place (no buffer of all the pairs besides the two lists)
+        let buckets = cells.starts.len() - 1;
+        let chunk = (buckets / (4 * rayon::current_num_threads()).max(1)).max(64);
+        let chunk_buckets = |c: usize| c * chunk..((c + 1) * chunk).min(buckets);
+        let counts: Vec<(usize, usize)> = (0..buckets.div_ceil(chunk))
+            .into_par_iter()
+            .map(|c| {
+                let mut n = (0, 0);
+                cells.pairs(chunk_buckets(c), boxes, &accept, |p, q| {
+                    if is_first(p, q) {
+                        n.0 += 1;
+                    } else {
+                        n.1 += 1;
+                    }
+                });
+                n
+            })
+            .collect();
+        let large_firsts = large_pairs.iter().filter(|&&(i, j)| is_first(i, j)).count();
+        let firsts_count = counts.iter().map(|n| n.0).sum::<usize>() + large_firsts;
+        let rest_count =
+            counts.iter().map(|n| n.1).sum::<usize>() + large_pairs.len() - large_firsts;
+        firsts.reserve_exact(firsts_count);
+        rest.reserve_exact(rest_count);
+        firsts.resize(firsts_count, (0, 0));
+        rest.resize(rest_count, (0, 0));
+        let (mut f, mut r) = (&mut firsts[..], &mut rest[..]);
+        let mut parts = Vec::with_capacity(counts.len());
+        for &(nf, nr) in &counts {
+            let (fc, f_tail) = std::mem::take(&mut f).split_at_mut(nf);
+            let (rc, r_tail) = std::mem::take(&mut r).split_at_mut(nr);
+            parts.push((fc, rc));
+            (f, r) = (f_tail, r_tail);
+        }
+        parts.into_par_iter().enumerate().for_each(|(c, (fc, rc))| {
+            let (mut nf, mut nr) = (0, 0);
+            cells.pairs(chunk_buckets(c), boxes, &accept, |p, q| {
+                if is_first(p, q) {
+                    fc[nf] = (p, q);
+                    nf += 1;
+                } else {
+                    rc[nr] = (p, q);
+                    nr += 1;
+                }
+            });
+        });
+        let (mut nf, mut nr) = (0, 0);
+        for pair in large_pairs {
+            if is_first(pair.0, pair.1) {
+                f[nf] = pair;
+                nf += 1;
+            } else {
+                r[nr] = pair;
+                nr += 1;
             }
         }
         firsts.par_sort_unstable();
@@ -356,6 +418,22 @@ mod tests {
             let mut pairs = Vec::new();
             bp.overlapping_pairs(&boxes, accept, &mut pairs);
             prop_assert_eq!(pairs, brute_force(&boxes, accept));
+        }
+
+        #[test]
+        fn split_pairs_are_the_pairs_divided_by_the_rule(boxes in boxes_strategy()) {
+            // large boxes among them: their pairs go to both lists too
+            let accept = |i: u32, j: u32| (i + j) % 7 != 3;
+            let is_first = |i: u32, j: u32| (i * j) % 3 == 1;
+            let (mut firsts, mut rest) = (vec![(9, 9)], vec![(8, 8)]);
+            BroadPhase::default().overlapping_pairs_split(
+                &boxes, accept, is_first, &mut firsts, &mut rest,
+            );
+            let all = brute_force(&boxes, accept);
+            let (want_firsts, want_rest): (Vec<_>, Vec<_>) =
+                all.into_iter().partition(|&(i, j)| is_first(i, j));
+            prop_assert_eq!(firsts, want_firsts);
+            prop_assert_eq!(rest, want_rest);
         }
 
         #[test]
