@@ -63,6 +63,8 @@ pub struct Collider {
     /// Candidate pairs of free spheres `(i, j)`, particle ids, `i < j`, sorted: those whose
     /// centres are within `r_i + r_j + m_i + m_j` (radii plus margins), the only ones that can
     /// touch before the next build (their boxes may overlap farther apart, at the corners).
+    /// The engine hands the array to the neighbour list after each build (its keys), and it
+    /// is empty until the next.
     pub sphere_pairs: Vec<(u32, u32)>,
     /// Candidate (wall, particle) pairs of the particles that are not free spheres, sorted.
     pub wall_pairs: Vec<(u32, u32)>,

@@ -313,54 +313,40 @@ impl NeighbourList {
         self.keys.fits(particles, walls)
     }
 
-    /// The candidates of a new build of the collider: `spheres` (particle pairs, sorted) and
-    /// `walls` ((wall, particle) pairs, sorted), with the contacts of the touching pairs
-    /// carried over by key. A touching pair missing from the new candidates (which the
-    /// collider's margins exclude) is kept, so that its end is accounted for.
-    pub(crate) fn rebuild(&mut self, spheres: &[(u32, u32)], walls: &[(u32, u32)]) {
+    /// The candidates of a new build of the collider: `spheres` (particle pairs, sorted; its
+    /// array becomes the keys') and `walls` ((wall, particle) pairs, sorted), with the
+    /// contacts of the touching pairs carried over by key. A touching pair missing from the
+    /// new candidates (which the collider's margins exclude) is kept, so that its end is
+    /// accounted for.
+    pub(crate) fn rebuild(&mut self, spheres: Vec<(u32, u32)>, walls: &[(u32, u32)]) {
         self.generation = new_generation();
         let old_keys = std::mem::take(&mut self.keys);
         let old_slots = std::mem::take(&mut self.slots);
         let old_blocks = std::mem::take(&mut self.blocks);
         // the old touching pairs in key order: (key, old block, slot in it)
-        let mut old = old_keys
+        let old = old_keys
             .iter()
-            .zip(old_slots)
+            .zip(old_slots.iter().copied())
             .enumerate()
             .filter(|(_, (_, s))| *s != NO_CONTACT)
-            .map(|(n, (k, s))| (k, n / BLOCK, s))
-            .peekable();
+            .map(|(n, (k, s))| (k, n / BLOCK, s));
+        // first the keys: the candidates, and the touching pairs they lack in their places
         let new = spheres
             .iter()
             .map(|&(i, j)| (Feature::Particle(i), Feature::Particle(j)))
             .chain(walls.iter().map(|&(w, i)| (Feature::Wall(w), Feature::Particle(i))));
-        // first the keys, and where each carried contact goes and comes from
-        let mut carried: Vec<(usize, usize, u32)> = Vec::new();
-        self.keys.reserve(spheres.len() + walls.len());
-        for key in new {
-            while let Some(&(k, b, s)) = old.peek() {
-                if k >= key {
-                    break;
-                }
-                old.next();
-                carried.push((self.keys.len(), b, s));
-                self.keys.push(k);
-            }
-            if let Some(&(k, b, s)) = old.peek() {
-                if k == key {
-                    old.next();
-                    carried.push((self.keys.len(), b, s));
-                }
-            }
-            self.keys.push(key);
-        }
-        for (k, b, s) in old {
-            carried.push((self.keys.len(), b, s));
-            self.keys.push(k);
-        }
-        // (a touching pair the new candidates lack, pushed past the room made for them,
-        // doubled the keys' room)
-        self.keys.shrink_spare();
+        let lacking = keys_lacking(new, old.clone().map(|(k, _, _)| k));
+        self.keys = PairKeys::from_candidates(spheres, walls, &lacking);
+        // then where each carried contact goes and comes from: (new index, old block, slot)
+        let mut keys = self.keys.iter().enumerate();
+        let carried: Vec<(usize, usize, u32)> = old
+            .map(|(k, b, s)| {
+                let (n, _) =
+                    keys.find(|&(_, key)| key == k).expect("every old touching pair is a key");
+                (n, b, s)
+            })
+            .collect();
+        drop((old_keys, old_slots));
         // then the contacts, laid out anew in key order, each block made with its count and
         // room for births when its first contact comes, each old block dropped once passed
         // (both in key order: the old and the new contacts are never all held at once)
@@ -662,6 +648,19 @@ pub(crate) fn merged_fresh<'a>(
     })
 }
 
+/// The keys of `old` (sorted) that `new` (sorted) lacks, in order.
+fn keys_lacking(
+    new: impl Iterator<Item = ContactKey>,
+    old: impl Iterator<Item = ContactKey>,
+) -> Vec<ContactKey> {
+    let mut new = new.peekable();
+    old.filter(|k| {
+        while new.next_if(|key| key < k).is_some() {}
+        new.peek() != Some(k)
+    })
+    .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -738,11 +737,11 @@ mod tests {
     #[test]
     fn a_rebuild_carries_the_touching_pairs_by_key_and_keeps_those_it_lost() {
         let mut list = NeighbourList::default();
-        list.rebuild(&[(0, 1), (0, 2), (1, 2)], &[(0, 1)]);
+        list.rebuild(vec![(0, 1), (0, 2), (1, 2)], &[(0, 1)]);
         assert_eq!(list.candidates(), 4);
         list.set(1, contact(2.0)); // (0, 2)
         list.set(3, contact(3.0)); // wall 0, particle 1
-        list.rebuild(&[(0, 2), (2, 3)], &[]);
+        list.rebuild(vec![(0, 2), (2, 3)], &[]);
         let touching: Vec<_> = list.touching().map(|(k, c)| (k, c.point.x)).collect();
         assert_eq!(
             touching,
@@ -758,10 +757,10 @@ mod tests {
     #[test]
     fn saved_and_compared_as_its_touching_pairs() {
         let mut a = NeighbourList::default();
-        a.rebuild(&[(0, 1), (1, 2)], &[]);
+        a.rebuild(vec![(0, 1), (1, 2)], &[]);
         a.set(1, contact(1.0));
         let mut b = NeighbourList::default();
-        b.rebuild(&[(1, 2)], &[(0, 0)]);
+        b.rebuild(vec![(1, 2)], &[(0, 0)]);
         b.set(0, contact(1.0));
         assert_eq!(a, b);
         let saved: Vec<(ContactKey, PairContact)> = a.clone().into();

@@ -38,6 +38,36 @@ impl PairKeys {
         PairKeys { ids: Vec::with_capacity(n), first_wall: 0, foreign: false }
     }
 
+    /// The keys of the candidates `spheres` (particle pairs, sorted; the array is kept for
+    /// the keys, with room made for `walls`), then `walls` ((wall, particle) pairs, sorted),
+    /// and the keys `extra` (sorted, none among the candidates) in their places.
+    pub(crate) fn from_candidates(
+        mut spheres: Vec<(u32, u32)>,
+        walls: &[(u32, u32)],
+        extra: &[ContactKey],
+    ) -> Self {
+        if extra.is_empty() {
+            let first_wall = spheres.len();
+            spheres.reserve_exact(walls.len());
+            spheres.extend_from_slice(walls);
+            return PairKeys { ids: spheres, first_wall, foreign: false };
+        }
+        let candidates = spheres
+            .iter()
+            .map(|&(i, j)| (Feature::Particle(i), Feature::Particle(j)))
+            .chain(walls.iter().map(|&(w, i)| (Feature::Wall(w), Feature::Particle(i))));
+        let mut keys = PairKeys::with_capacity(spheres.len() + walls.len() + extra.len());
+        let mut extra = extra.iter().copied().peekable();
+        for key in candidates {
+            while let Some(k) = extra.next_if(|k| *k < key) {
+                keys.push(k);
+            }
+            keys.push(key);
+        }
+        extra.for_each(|k| keys.push(k));
+        keys
+    }
+
     /// The number of keys.
     #[inline]
     pub(crate) fn len(&self) -> usize {
@@ -88,18 +118,6 @@ impl PairKeys {
         }
     }
 
-    /// Makes room for `n` more keys.
-    pub(crate) fn reserve(&mut self, n: usize) {
-        self.ids.reserve(n);
-    }
-
-    /// Gives back the room past the keys when it is more than an eighth of them.
-    pub(crate) fn shrink_spare(&mut self) {
-        if self.ids.capacity() > self.len() + self.len() / 8 {
-            self.ids.shrink_to_fit();
-        }
-    }
-
     /// No keys.
     pub(crate) fn clear(&mut self) {
         self.ids.clear();
@@ -123,6 +141,34 @@ impl PairKeys {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn candidates_become_keys_in_their_own_array_and_extra_keys_go_in_their_places() {
+        let p = Feature::Particle;
+        let mut spheres = Vec::with_capacity(3);
+        spheres.extend([(0, 3), (2, 5)]);
+        let at = spheres.as_ptr();
+        let keys = PairKeys::from_candidates(spheres, &[(0, 1)], &[]);
+        assert_eq!(keys.ids(), [(0, 3), (2, 5), (0, 1)]);
+        assert_eq!(keys.first_wall(), 2);
+        // the candidates' array, which had room for the wall pair
+        assert_eq!(keys.ids.as_ptr(), at);
+        let extra =
+            [(p(1), p(2)), (p(4), p(6)), (Feature::Wall(0), p(0)), (Feature::Wall(2), p(2))];
+        let keys = PairKeys::from_candidates(vec![(0, 3), (2, 5)], &[(0, 1)], &extra);
+        let want = [
+            (p(0), p(3)),
+            (p(1), p(2)),
+            (p(2), p(5)),
+            (p(4), p(6)),
+            (Feature::Wall(0), p(0)),
+            (Feature::Wall(0), p(1)),
+            (Feature::Wall(2), p(2)),
+        ];
+        assert_eq!(keys.iter().collect::<Vec<_>>(), want);
+        assert_eq!(keys.first_wall(), 4);
+        assert!(keys.fits(7, 3));
+    }
 
     #[test]
     fn keys_come_back_as_pushed_and_in_the_order_of_features() {

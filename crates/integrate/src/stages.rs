@@ -135,7 +135,9 @@ impl Simulation {
         if self.pipeline.collider.needs_rebuild(&self.state.model) {
             let collider = &mut self.pipeline.collider;
             collider.rebuild(&self.state.model);
-            self.state.contacts.pairs.rebuild(&collider.sphere_pairs, &collider.sphere_wall_pairs);
+            // the sphere pairs' array becomes the neighbour list's keys (one array, not two)
+            let spheres = std::mem::take(&mut collider.sphere_pairs);
+            self.state.contacts.pairs.rebuild(spheres, &collider.sphere_wall_pairs);
         }
         self.pipeline.timers.stop(Stage::Collision, t0);
     }
