@@ -102,14 +102,10 @@ impl Packing {
 /// Cell size: twice the median of the boxes' largest extents, so that a typical box covers
 /// one or two cells per axis. Zero for no boxes. The extents are sorted in `scratch` (the
 /// entries' buffer, a `u64` per box: no buffer of their own) as [`total_order_bits`].
-fn choose_cell_size(boxes: &[Aabb], scratch: &mut Vec<u64>) -> Real {
+fn choose_cell_size(boxes: impl Iterator<Item = Aabb>, scratch: &mut Vec<u64>) -> Real {
     scratch.clear();
     scratch.extend(
-        boxes
-            .iter()
-            .map(|b| (b.maxs - b.mins).max())
-            .filter(|e| e.is_finite())
-            .map(total_order_bits),
+        boxes.map(|b| (b.maxs - b.mins).max()).filter(|e| e.is_finite()).map(total_order_bits),
     );
     if scratch.is_empty() {
         return 0.0;
@@ -151,13 +147,14 @@ impl Cells<'_> {
     /// Calls `found(i, j)`, `i < j`, for each pair of boxes that share one of the cells
     /// `cells` (indices into `starts`), intersect and that `accept` accepts, reported only by
     /// the cell that holds the minimum corner of their intersection (so once).
-    fn pairs<F>(
+    fn pairs<B, F>(
         &self,
         cells: std::ops::Range<usize>,
-        boxes: &[Aabb],
+        box_of: &B,
         accept: &F,
         mut found: impl FnMut(u32, u32),
     ) where
+        B: Fn(u32) -> Aabb,
         F: Fn(u32, u32) -> bool,
     {
         let Cells { entries, starts, packing, origin, inv_h } = self;
@@ -166,11 +163,11 @@ impl Cells<'_> {
             let key = packing.key_of(entries[s]);
             for a in s..e {
                 let i = packing.index_of(entries[a]);
-                let bi = &boxes[i as usize];
+                let bi = box_of(i);
                 for &other in &entries[a + 1..e] {
                     let j = packing.index_of(other);
-                    let bj = &boxes[j as usize];
-                    if !bi.intersects(bj) {
+                    let bj = box_of(j);
+                    if !bi.intersects(&bj) {
                         continue;
                     }
                     let corner = bi.mins.sup(&bj.mins);
@@ -197,46 +194,54 @@ impl BroadPhase {
     where
         F: Fn(u32, u32) -> bool + Sync,
     {
-        self.overlapping_pairs_split(boxes, accept, |_, _| false, &mut Vec::new(), pairs);
+        let box_of = |i: u32| boxes[i as usize];
+        let no = |_, _| false;
+        self.overlapping_pairs_split(boxes.len(), box_of, accept, no, &mut Vec::new(), pairs);
     }
 
-    /// [`BroadPhase::overlapping_pairs`], each pair written into `firsts` where
+    /// [`BroadPhase::overlapping_pairs`] of the `count` boxes `box_of(0..count)` (the caller
+    /// may store them or make them on demand: a free sphere's box is its centre ± its radius
+    /// and margin), each pair written into `firsts` where
     /// `is_first(i, j)`, else into `rest` (both sorted). Each list is as long as its pairs,
     /// its room kept from build to build and grown to the count exactly: the collider's
     /// pairs of free spheres go straight to their own list (written to one list and moved
     /// to the other, a packing of 10⁵ spheres held both lists' room, 84 bytes per sphere).
-    /// The pairs are found twice, counted then written in place: each chunk of cells wrote
-    /// to a buffer of its own, and those buffers, grown by doubling and kept for the next
-    /// build, held 37 bytes per sphere of a packing; the second search costs about 0.1 % of
-    /// a packing's step (builds went from 1.65 % to 1.7 % of the step at 10⁵ spheres).
-    pub fn overlapping_pairs_split<F, G>(
+    /// Each chunk of cells writes its pairs to a buffer of its own, dropped once the pairs
+    /// are in the lists: kept for the next build, those buffers (grown by doubling) held 37
+    /// bytes per sphere of a packing between builds. (Counting the pairs first and writing
+    /// them in place, which never holds them twice, doubled the pair tests: the tube
+    /// impact's builds took 60 % longer, 7 % of its step.)
+    pub fn overlapping_pairs_split<B, F, G>(
         &mut self,
-        boxes: &[Aabb],
+        count: usize,
+        box_of: B,
         accept: F,
         is_first: G,
         firsts: &mut Vec<(u32, u32)>,
         rest: &mut Vec<(u32, u32)>,
     ) where
         F: Fn(u32, u32) -> bool + Sync,
-        G: Fn(u32, u32) -> bool + Sync,
+        G: Fn(u32, u32) -> bool,
+        B: Fn(u32) -> Aabb + Sync,
     {
+        let boxes = || (0..count as u32).map(&box_of);
         firsts.clear();
         rest.clear();
         self.entries.clear();
         self.large.clear();
-        let h = choose_cell_size(boxes, &mut self.entries);
+        let h = choose_cell_size(boxes(), &mut self.entries);
         if h == 0.0 {
             return;
         }
         let inv_h = 1.0 / h;
-        let origin = boxes.iter().fold(Vec3::repeat(Real::INFINITY), |m, b| m.inf(&b.mins));
-        let finite = |b: &&Aabb| b.mins.iter().chain(b.maxs.iter()).all(|x| x.is_finite());
-        let top = boxes.iter().filter(finite).fold(origin, |m, b| m.sup(&b.maxs));
+        let origin = boxes().fold(Vec3::repeat(Real::INFINITY), |m, b| m.inf(&b.mins));
+        let finite = |b: &Aabb| b.mins.iter().chain(b.maxs.iter()).all(|x| x.is_finite());
+        let top = boxes().filter(finite).fold(origin, |m, b| m.sup(&b.maxs));
         let last = cell_of(&top, &origin, inv_h);
         let total = u64::BITS;
         #[cfg(test)]
         let total = self.entry_bits.unwrap_or(total);
-        let packing = Packing::new(last.map(|c| c.saturating_add(1)), boxes.len(), total);
+        let packing = Packing::new(last.map(|c| c.saturating_add(1)), count, total);
         // the cells each box covers, or None for a box with a NaN coordinate or a large one
         let span = |b: &Aabb| {
             if !(b.mins.iter().chain(b.maxs.iter()).all(|x| x.is_finite())) {
@@ -247,14 +252,13 @@ impl BroadPhase {
             Some((lo, hi)).filter(|_| (0..3).all(|k| hi[k] - lo[k] < MAX_CELLS_PER_AXIS))
         };
         // the entries counted first: their room grown to the count, not doubled past it
-        let count: usize = boxes
-            .iter()
-            .filter_map(span)
+        let entry_count: usize = boxes()
+            .filter_map(|b| span(&b))
             .map(|(lo, hi)| (0..3).map(|k| (hi[k] - lo[k] + 1) as usize).product::<usize>())
             .sum();
-        self.entries.reserve_exact(count);
-        for (i, b) in boxes.iter().enumerate() {
-            let Some((lo, hi)) = span(b) else {
+        self.entries.reserve_exact(entry_count);
+        for (i, b) in boxes().enumerate() {
+            let Some((lo, hi)) = span(&b) else {
                 if b.mins.iter().chain(b.maxs.iter()).all(|x| x.is_finite()) {
                     self.large.push(i as u32);
                 }
@@ -283,10 +287,10 @@ impl BroadPhase {
         // large boxes against every box (each large-large pair once)
         let mut large_pairs = Vec::new();
         for (n, &i) in self.large.iter().enumerate() {
-            let bi = &boxes[i as usize];
-            for (j, bj) in boxes.iter().enumerate() {
+            let bi = box_of(i);
+            for (j, bj) in boxes().enumerate() {
                 let j = j as u32;
-                if j == i || (self.large[..n].contains(&j)) || !bi.intersects(bj) {
+                if j == i || (self.large[..n].contains(&j)) || !bi.intersects(&bj) {
                     continue;
                 }
                 let (p, q) = if i < j { (i, j) } else { (j, i) };
@@ -295,63 +299,31 @@ impl BroadPhase {
                 }
             }
         }
-        // chunk c holds buckets c·chunk to (c + 1)·chunk; each chunk's pairs are counted,
-        // then written in place (no buffer of all the pairs besides the two lists)
+        // chunk c holds buckets c·chunk to (c + 1)·chunk; each chunk's pairs go to a buffer
+        // of the build's (none kept between builds), then to the two lists
         let buckets = cells.starts.len() - 1;
         let chunk = (buckets / (4 * rayon::current_num_threads()).max(1)).max(64);
-        let chunk_buckets = |c: usize| c * chunk..((c + 1) * chunk).min(buckets);
-        let counts: Vec<(usize, usize)> = (0..buckets.div_ceil(chunk))
+        let found: Vec<Vec<(u32, u32)>> = (0..buckets.div_ceil(chunk))
             .into_par_iter()
             .map(|c| {
-                let mut n = (0, 0);
-                cells.pairs(chunk_buckets(c), boxes, &accept, |p, q| {
-                    if is_first(p, q) {
-                        n.0 += 1;
-                    } else {
-                        n.1 += 1;
-                    }
-                });
-                n
+                let mut out = Vec::new();
+                let cells_of_chunk = c * chunk..((c + 1) * chunk).min(buckets);
+                cells.pairs(cells_of_chunk, &box_of, &accept, |p, q| out.push((p, q)));
+                out
             })
             .collect();
-        let large_firsts = large_pairs.iter().filter(|&&(i, j)| is_first(i, j)).count();
-        let firsts_count = counts.iter().map(|n| n.0).sum::<usize>() + large_firsts;
-        let rest_count =
-            counts.iter().map(|n| n.1).sum::<usize>() + large_pairs.len() - large_firsts;
+        let all = || found.iter().flatten().chain(&large_pairs);
+        let firsts_count = all().filter(|&&(i, j)| is_first(i, j)).count();
         firsts.reserve_exact(firsts_count);
-        rest.reserve_exact(rest_count);
-        firsts.resize(firsts_count, (0, 0));
-        rest.resize(rest_count, (0, 0));
-        let (mut f, mut r) = (&mut firsts[..], &mut rest[..]);
-        let mut parts = Vec::with_capacity(counts.len());
-        for &(nf, nr) in &counts {
-            let (fc, f_tail) = std::mem::take(&mut f).split_at_mut(nf);
-            let (rc, r_tail) = std::mem::take(&mut r).split_at_mut(nr);
-            parts.push((fc, rc));
-            (f, r) = (f_tail, r_tail);
-        }
-        parts.into_par_iter().enumerate().for_each(|(c, (fc, rc))| {
-            let (mut nf, mut nr) = (0, 0);
-            cells.pairs(chunk_buckets(c), boxes, &accept, |p, q| {
-                if is_first(p, q) {
-                    fc[nf] = (p, q);
-                    nf += 1;
-                } else {
-                    rc[nr] = (p, q);
-                    nr += 1;
-                }
-            });
-        });
-        let (mut nf, mut nr) = (0, 0);
-        for pair in large_pairs {
-            if is_first(pair.0, pair.1) {
-                f[nf] = pair;
-                nf += 1;
+        rest.reserve_exact(all().count() - firsts_count);
+        for &(i, j) in all() {
+            if is_first(i, j) {
+                firsts.push((i, j));
             } else {
-                r[nr] = pair;
-                nr += 1;
+                rest.push((i, j));
             }
         }
+        drop(found);
         firsts.par_sort_unstable();
         rest.par_sort_unstable();
     }
@@ -426,8 +398,9 @@ mod tests {
             let accept = |i: u32, j: u32| (i + j) % 7 != 3;
             let is_first = |i: u32, j: u32| (i * j) % 3 == 1;
             let (mut firsts, mut rest) = (vec![(9, 9)], vec![(8, 8)]);
+            let box_of = |i: u32| boxes[i as usize];
             BroadPhase::default().overlapping_pairs_split(
-                &boxes, accept, is_first, &mut firsts, &mut rest,
+                boxes.len(), box_of, accept, is_first, &mut firsts, &mut rest,
             );
             let all = brute_force(&boxes, accept);
             let (want_firsts, want_rest): (Vec<_>, Vec<_>) =

@@ -86,6 +86,8 @@ pub struct Collider {
     reference: Vec<Vec3>,
     /// Wall points at the last build.
     wall_reference: Vec<Vec3>,
+    /// Boxes of the elements after the free spheres, at the last build (a free sphere's box,
+    /// centre ± radius and margin, is made when asked for: 48 bytes a sphere not held).
     boxes: Vec<Aabb>,
     broad: BroadPhase,
     /// Number of builds so far.
@@ -208,26 +210,31 @@ impl Collider {
     /// not two parts of a structure whose self-contact is off.
     pub fn rebuild(&mut self, model: &Model) {
         let p = &model.particles;
+        // the structures' elements' boxes; the free spheres' (first among the elements) are
+        // made when the broad phase asks
+        let spheres = self.elements.partition_point(|e| matches!(e, Element::Particle(_)));
         self.boxes.clear();
-        self.boxes.extend(self.elements.iter().zip(&self.margins).map(|(&e, &margin)| {
-            let b = match e {
-                Element::Particle(i) => aabb_sphere(&p.pos[i as usize], p.radius[i as usize]),
-                Element::Connection(k) => {
-                    let c = &model.connections[k as usize];
-                    aabb_swept_segment(
-                        &p.pos[c.nodes[0] as usize],
-                        &p.pos[c.nodes[1] as usize],
-                        c.radius,
-                    )
-                }
-                Element::PFacet(k) => {
-                    let f = &model.pfacets[k as usize];
-                    let [a, b, d] = f.nodes.map(|n| p.pos[n as usize]);
-                    aabb_swept_triangle(&a, &b, &d, f.radius)
-                }
-            };
-            b.loosened(margin)
-        }));
+        self.boxes.extend(self.elements[spheres..].iter().zip(&self.margins[spheres..]).map(
+            |(&e, &margin)| {
+                let b = match e {
+                    Element::Particle(i) => aabb_sphere(&p.pos[i as usize], p.radius[i as usize]),
+                    Element::Connection(k) => {
+                        let c = &model.connections[k as usize];
+                        aabb_swept_segment(
+                            &p.pos[c.nodes[0] as usize],
+                            &p.pos[c.nodes[1] as usize],
+                            c.radius,
+                        )
+                    }
+                    Element::PFacet(k) => {
+                        let f = &model.pfacets[k as usize];
+                        let [a, b, d] = f.nodes.map(|n| p.pos[n as usize]);
+                        aabb_swept_triangle(&a, &b, &d, f.radius)
+                    }
+                };
+                b.loosened(margin)
+            },
+        ));
         let (elements, margins) = (&self.elements, &self.margins);
         let accept = |i: u32, j: u32| {
             let (a, b) = (elements[i as usize], elements[j as usize]);
@@ -250,8 +257,17 @@ impl Collider {
                 (Element::Particle(_), Element::Particle(_))
             )
         };
-        let (spheres, pairs) = (&mut self.sphere_pairs, &mut self.pairs);
-        self.broad.overlapping_pairs_split(&self.boxes, accept, two_spheres, spheres, pairs);
+        let (boxes, count) = (&self.boxes, elements.len());
+        let box_of = |i: u32| {
+            let i = i as usize;
+            if i >= spheres {
+                return boxes[i - spheres];
+            }
+            let Element::Particle(s) = elements[i] else { unreachable!("free spheres first") };
+            aabb_sphere(&p.pos[s as usize], p.radius[s as usize]).loosened(margins[i])
+        };
+        let (sphere_pairs, pairs) = (&mut self.sphere_pairs, &mut self.pairs);
+        self.broad.overlapping_pairs_split(count, box_of, accept, two_spheres, sphere_pairs, pairs);
         self.name_sphere_pairs();
 
         self.wall_pairs.clear();
