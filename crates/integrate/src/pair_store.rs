@@ -103,7 +103,7 @@ impl<C> BlockContacts<C> {
     /// the processor fetches ahead. The places ends left are given back: a packing that
     /// loosens (the benchmark's, 70 000 contacts on 100 000 spheres at its 20th step, 54 000
     /// five steps on) kept 30 % of its contacts' memory as holes until the next rebuild. The
-    /// array itself shrinks when more than a quarter of it is spare
+    /// array itself shrinks when more than an eighth of it is spare
     /// ([`BlockContacts::shrink_spare`]).
     ///
     /// In place: `source[k]`, where the contact that goes to place k is now (the live ones
@@ -147,14 +147,15 @@ impl<C> BlockContacts<C> {
         self.shrink_spare();
     }
 
-    /// Gives back the array's spare room when it is more than a quarter of it (two
-    /// [`headroom`]s over the live contacts), down to the room a rebuild makes
-    /// ([`room_for_births`]); one reallocation, only when the block lost a quarter of its
-    /// contacts since it was last sized. (The holes' array, 4 bytes a contact, keeps its
+    /// Gives back the array's spare room when it is more than a [`headroom`] over the live
+    /// contacts (an eighth), down to the room a rebuild makes ([`room_for_births`]); one
+    /// reallocation, only when the block lost an eighth of its contacts since it was last
+    /// sized, at a layout, which moves them all anyway. (At two headrooms, a packing that
+    /// loosens held 16 bytes per sphere more.) (The holes' array, 4 bytes a contact, keeps its
     /// room: the next layout builds its permutation there.)
     fn shrink_spare(&mut self) {
         let live = self.contacts.len();
-        if self.contacts.capacity() > live + 2 * headroom(live) {
+        if self.contacts.capacity() > live + headroom(live) {
             self.contacts.shrink_to(live + room_for_births(live));
         }
     }
@@ -285,6 +286,15 @@ mod tests {
         slots[1] = NO_CONTACT;
         block.tidy(&mut slots);
         assert_eq!((block.holes.len(), block.contacts.len()), (1, 266));
+        // 34 ends of 266 (an eighth of the 232 left): laid out, and the array (274) is more
+        // than an eighth over them, so it shrinks
+        for k in (2..400).filter(|k| k % 3 != 0).take(33) {
+            block.remove(slots[k]);
+            slots[k] = NO_CONTACT;
+        }
+        block.tidy(&mut slots);
+        assert_eq!((block.holes.len(), block.contacts.len()), (0, 232));
+        assert_eq!(block.contacts.capacity(), 232 + room_for_births(232));
     }
 
     #[test]
