@@ -170,6 +170,18 @@ pub(crate) struct PairScratch {
     position: Vec<u32>,
 }
 
+/// Gives back a buffer's room when it is more than four times its contents (and more than
+/// 2048 places), down to twice (at least 1024): buffers kept from step to step (no allocation in a steady
+/// run) also keep the room of a step unlike the others. The first step of a packing makes
+/// all its contacts at once, and the lists of fresh pairs held 26 bytes per sphere for
+/// the rest of the run.
+fn trim<T>(buffer: &mut Vec<T>) {
+    let room = 2 * buffer.len().max(512);
+    if buffer.capacity() > 2 * room {
+        buffer.shrink_to(room);
+    }
+}
+
 /// The chunks of `candidates` pairs, cleared (their buffers kept).
 fn chunks_for(chunks: &mut Vec<ChunkOut>, candidates: usize) -> &mut [ChunkOut] {
     let used = candidates.div_ceil(PAIR_CHUNK);
@@ -191,10 +203,14 @@ impl PairScratch {
     fn totals(&mut self, used: usize, ended_dissipation: &mut Real) -> (BirthReport, ChunkSums) {
         let mut total = ChunkSums::default();
         self.fresh.clear();
-        for c in &self.chunks[..used] {
+        for c in &mut self.chunks[..used] {
             c.book.sums.add_to(&mut total);
             self.fresh.extend_from_slice(&c.book.fresh);
+            trim(&mut c.book.fresh);
+            trim(&mut c.book.pushed);
+            trim(&mut c.outcomes);
         }
+        trim(&mut self.fresh);
         *ended_dissipation += total.ended_dissipation;
         let report = BirthReport {
             born_deep: total.born_deep,
@@ -376,5 +392,28 @@ impl NeighbourList {
             total.friction += sums.friction;
         }
         (total.elastic, total.friction)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::trim;
+
+    #[test]
+    fn trim_gives_back_room_only_past_four_times_the_contents() {
+        let mut big: Vec<u32> = Vec::with_capacity(10_000);
+        big.extend(0..600);
+        trim(&mut big);
+        assert_eq!((big.len(), big.capacity()), (600, 1200));
+        assert!(big.iter().copied().eq(0..600));
+        // at most four times: kept
+        let mut kept: Vec<u32> = Vec::with_capacity(4000);
+        kept.extend(0..1000);
+        trim(&mut kept);
+        assert_eq!(kept.capacity(), 4000);
+        // small buffers keep 2048 places whatever they hold
+        let mut small: Vec<u32> = Vec::with_capacity(2048);
+        trim(&mut small);
+        assert_eq!(small.capacity(), 2048);
     }
 }
