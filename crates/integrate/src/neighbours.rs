@@ -18,6 +18,7 @@ use crate::contact::{
     SPHERE_OWNER, WALL_OWNER,
 };
 use crate::dashpots::shear_exit;
+pub use crate::pair_keys::ContactKey;
 use crate::pair_keys::PairKeys;
 use crate::pair_store::{blocks_for, BlockContacts, BLOCK, NO_CONTACT};
 use flexdem_contact::{
@@ -28,9 +29,6 @@ use flexdem_elements::virtual_sphere::{ContactGeometry, Feature, Kinematics, Nod
 use flexdem_elements::{Model, Particles};
 use flexdem_geom::{Real, Vec3};
 use serde::{Deserialize, Serialize};
-
-/// The key of a contact: its two features (body 1's, body 2's).
-pub type ContactKey = (Feature, Feature);
 
 /// The state of a touching pair: what a [`Contact`] holds less what the key says (the sites
 /// and the owners), and of the law's output only the force it applied (176 bytes where a

@@ -6,8 +6,10 @@
 //! `(Feature, Feature)` a key took 16 bytes, 48 per sphere of a packing with its three
 //! candidates per sphere.
 
-use crate::neighbours::ContactKey;
 use flexdem_elements::virtual_sphere::Feature;
+
+/// The key of a contact: its two features (body 1's, body 2's).
+pub type ContactKey = (Feature, Feature);
 
 /// The candidate pairs' keys, in key order.
 #[derive(Clone, Debug, Default)]
