@@ -14,6 +14,9 @@ use rayon::prelude::*;
 /// A box may cover at most this many cells per axis before it is treated as large.
 const MAX_CELLS_PER_AXIS: i64 = 4;
 
+/// Cell entries kept from build to build (512 KiB); more are given back after the build.
+const KEPT_ENTRIES: usize = 1 << 16;
+
 /// Reusable buffers for [`BroadPhase::overlapping_pairs`].
 #[derive(Clone, Debug, Default)]
 pub struct BroadPhase {
@@ -326,6 +329,11 @@ impl BroadPhase {
         drop(found);
         firsts.par_sort_unstable();
         rest.par_sort_unstable();
+        // the entries of a large scene are given back until the next build (27 bytes per
+        // sphere of a packing); a small one's, which may build every few steps, are kept
+        if self.entries.capacity() > KEPT_ENTRIES {
+            self.entries = Vec::new();
+        }
     }
 }
 
