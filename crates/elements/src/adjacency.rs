@@ -6,7 +6,9 @@ use crate::Model;
 use serde::{Deserialize, Serialize};
 
 /// Rows of sorted `u32` lists in compressed sparse row form: row `i` is
-/// `items[offsets[i]..offsets[i + 1]]`.
+/// `items[offsets[i]..offsets[i + 1]]`. Rows past the last non-empty one are not stored
+/// (they read empty): a packing's free spheres cost no offsets (the two node rows took 8
+/// bytes per sphere of a packing with no structure).
 #[derive(Clone, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 pub struct Csr {
     /// Row starts into `items`; `offsets.len()` is the number of rows + 1.
@@ -16,10 +18,19 @@ pub struct Csr {
 }
 
 impl Csr {
-    /// Builds `rows` rows from `(row, item)` pairs (counting sort, O(rows + pairs)). Pairs
-    /// whose row is out of range are skipped. Each row is sorted; a pair given twice appears
-    /// twice.
+    /// Builds `rows` rows from `(row, item)` pairs (counting sort, O(rows + pairs)), up to
+    /// the last non-empty one. Pairs whose row is out of range are skipped. Each row is
+    /// sorted; a pair given twice appears twice.
     pub fn from_pairs(rows: usize, pairs: impl Iterator<Item = (u32, u32)> + Clone) -> Csr {
+        let rows = pairs
+            .clone()
+            .map(|(row, _)| row as usize)
+            .filter(|&row| row < rows)
+            .max()
+            .map_or(0, |last| last + 1);
+        if rows == 0 {
+            return Csr::default();
+        }
         let mut offsets = vec![0u32; rows + 1];
         for (row, _) in pairs.clone() {
             if (row as usize) < rows {
@@ -44,7 +55,7 @@ impl Csr {
         Csr { offsets, items }
     }
 
-    /// Number of rows.
+    /// Number of rows stored: one past the last non-empty row.
     pub fn rows(&self) -> usize {
         self.offsets.len().saturating_sub(1)
     }
@@ -103,13 +114,15 @@ mod tests {
     fn csr_rows_are_sorted_and_complete() {
         let pairs = [(2u32, 5u32), (0, 3), (2, 1), (0, 0), (9, 9)];
         let csr = Csr::from_pairs(4, pairs.iter().copied());
-        assert_eq!(csr.rows(), 4);
+        assert_eq!(csr.rows(), 3, "row 3 is empty, past the last non-empty row");
         assert_eq!(csr.get(0), &[0, 3]);
         assert_eq!(csr.get(1), &[] as &[u32]);
         assert_eq!(csr.get(2), &[1, 5]);
         assert_eq!(csr.get(3), &[] as &[u32]);
         assert_eq!(csr.get(4), &[] as &[u32], "out of range row is empty");
         assert_eq!(Csr::default().get(0), &[] as &[u32]);
+        let none = Csr::from_pairs(1000, [(1000u32, 1u32)].into_iter());
+        assert_eq!((none.rows(), none.offsets.len(), none.items.len()), (0, 0, 0));
     }
 
     proptest! {
@@ -120,10 +133,11 @@ mod tests {
             pairs in proptest::collection::vec((0u32..14, 0u32..50), 0..60),
         ) {
             let csr = Csr::from_pairs(rows, pairs.iter().copied());
-            prop_assert_eq!(csr.rows(), rows);
-            for r in 0..rows {
+            let last = pairs.iter().map(|p| p.0 as usize).filter(|&r| r < rows).max();
+            prop_assert_eq!(csr.rows(), last.map_or(0, |r| r + 1));
+            for r in 0..rows + 2 {
                 let mut expected: Vec<u32> =
-                    pairs.iter().filter(|p| p.0 as usize == r).map(|p| p.1).collect();
+                    pairs.iter().filter(|p| p.0 as usize == r && r < rows).map(|p| p.1).collect();
                 expected.sort_unstable();
                 prop_assert_eq!(csr.get(r), expected.as_slice());
             }
