@@ -114,12 +114,20 @@ impl Links {
             links.state.push(LinkState::new(p.pos[a], p.pos[b], p.ori[a], p.ori[b]));
         }
         links.loads = vec![LinkLoad::default(); links.nodes.len()];
-        links.index_nodes(p.len());
+        links.index_nodes();
         links
     }
 
-    /// Builds the node → loads index (counting sort, loads of a node in link order).
-    fn index_nodes(&mut self, n_particles: usize) {
+    /// Builds the node → loads index (counting sort, loads of a node in link order), up to
+    /// the last node a link holds: the particles after it (a packing's free spheres, all of
+    /// them without structures) take no offsets (4 bytes per sphere before).
+    fn index_nodes(&mut self) {
+        let n_particles = self.nodes.iter().flatten().max().map_or(0, |&last| last as usize + 1);
+        if n_particles == 0 {
+            self.node_offsets = Vec::new();
+            self.node_loads = Vec::new();
+            return;
+        }
         let mut count = vec![0u32; n_particles + 1];
         for l in &self.nodes {
             count[l[0] as usize + 1] += 1;
@@ -172,8 +180,16 @@ impl Links {
             node_loads: Vec::new(),
             chunk_sums: Vec::new(),
         };
-        fresh.index_nodes(n_particles);
-        fresh.node_offsets == self.node_offsets && fresh.node_loads == self.node_loads
+        fresh.index_nodes();
+        // a checkpoint written before the index stopped at the last node held a row per
+        // particle: the same index with the empty rows after the last node
+        let total = fresh.node_loads.len() as u32;
+        let (kept, after) =
+            self.node_offsets.split_at(fresh.node_offsets.len().min(self.node_offsets.len()));
+        let empty_after = self.node_offsets.len() <= n_particles + 1
+            && (fresh.node_offsets.is_empty() || after.iter().all(|&o| o == total))
+            && (!fresh.node_offsets.is_empty() || self.node_offsets.iter().all(|&o| o == 0));
+        kept == fresh.node_offsets && empty_after && fresh.node_loads == self.node_loads
     }
 
     /// Number of links.
@@ -337,5 +353,39 @@ mod tests {
         let mut other = chain_model();
         other.connections.pop();
         assert!(!good.check_against(&other));
+    }
+
+    /// The node index stops at the last node: free spheres after it take no room, and a
+    /// checkpoint's index with a row for every particle (as written before) still fits.
+    #[test]
+    fn the_node_index_stops_at_the_last_node() {
+        let mut model = chain_model();
+        let nodes = model.particles.len();
+        let mat = model.particles.material[0];
+        for k in 0..3 {
+            model.add_sphere(Vec3::new(5.0, k as Real, 0.0), 0.1, mat).unwrap();
+        }
+        let links = Links::from_model(&model, LinkKinematicsMode::Beam);
+        assert_eq!(links.node_offsets.len(), nodes + 1);
+        let mut force = vec![Vec3::zeros(); model.particles.len()];
+        let mut torque = force.clone();
+        links.add_loads(&mut force, &mut torque);
+        let total = *links.node_offsets.last().unwrap();
+        let mut old = links.clone();
+        old.node_offsets.resize(model.particles.len() + 1, total);
+        assert!(links.check_against(&model) && old.check_against(&model));
+        let mut too_long = old.clone();
+        too_long.node_offsets.push(total);
+        let mut not_empty = old.clone();
+        *not_empty.node_offsets.last_mut().unwrap() = total + 1;
+        assert!(!too_long.check_against(&model) && !not_empty.check_against(&model));
+        let mut free = Model::new();
+        let mat = free.add_material(Material::new(1e7, 0.3, 1000.0, 0.5).unwrap()).unwrap();
+        free.add_sphere(Vec3::zeros(), 0.1, mat).unwrap();
+        let none = Links::from_model(&free, LinkKinematicsMode::Beam);
+        assert!(none.node_offsets.is_empty() && none.check_against(&free));
+        let mut old_none = none.clone();
+        old_none.node_offsets = vec![0, 0];
+        assert!(old_none.check_against(&free));
     }
 }
