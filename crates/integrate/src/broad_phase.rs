@@ -14,8 +14,9 @@ use rayon::prelude::*;
 /// A box may cover at most this many cells per axis before it is treated as large.
 const MAX_CELLS_PER_AXIS: i64 = 4;
 
-/// Cell entries kept from build to build (512 KiB); more are given back after the build.
-const KEPT_ENTRIES: usize = 1 << 16;
+/// Cell entries kept from build to build (128 KiB: a net or a cantilever of a few thousand
+/// elements); more are given back after the build.
+const KEPT_ENTRIES: usize = 1 << 14;
 
 /// Reusable buffers for [`BroadPhase::overlapping_pairs`].
 #[derive(Clone, Debug, Default)]
