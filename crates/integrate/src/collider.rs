@@ -39,7 +39,8 @@ use rayon::prelude::*;
 fn element_size(model: &Model, e: Element) -> Real {
     let h = hull(model, e);
     let c = h.centroid;
-    let reach = h.skeleton().iter().map(|x| (x - c).norm()).fold(0.0, Real::max);
+    let skeleton = &h.points[..h.count as usize];
+    let reach = skeleton.iter().map(|x| (x - c).norm()).fold(0.0, Real::max);
     reach + h.radius
 }
 

@@ -224,7 +224,7 @@ impl ContactPipeline {
             // (free spheres and walls only: no hull is looked at)
             self.scratch.hulls.clear();
         } else {
-            // written in place: a collect copies each 136-byte hull through `memcpy`
+            // written in place: a collect copies each hull through `memcpy`
             self.scratch.hulls.resize(elements.len(), unused);
             self.scratch
                 .hulls

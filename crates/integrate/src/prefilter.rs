@@ -3,43 +3,40 @@
 //! a Verlet list are near misses: neighbours of neighbours on a mesh, spheres a little apart.
 //!
 //! Every element is a convex hull of one to three points (sphere centre, connection ends,
-//! PFacet corners) grown by a radius. Two such bodies are apart when, along some unit axis n,
+//! PFacet corners) grown by a radius. Two such bodies are apart when, along some axis u ≠ 0,
 //!
-//! min_j (b_j · n) − max_i (a_i · n) > r_a + r_b,
+//! min_j (b_j · u) − max_i (a_i · u) > (r_a + r_b)·|u|,
 //!
 //! (a separating slab wider than the two radii). The tests below are conservative: they only
 //! ever answer "apart" when the exact distance exceeds r_a + r_b.
+//!
+//! A hull is written for every collidable element at every step, so it holds only its
+//! points, centroid, radius and count (112 bytes; 136 with the unit normal): a PFacet's face
+//! normal (x₁ − x₀) × (x₂ − x₀), not normalised, is computed where a test needs it (any
+//! non-zero axis is valid: each test scales the radii by its axis's length).
 
 use flexdem_elements::touching::Element;
 use flexdem_elements::Model;
 use flexdem_geom::{Real, Vec3};
 
-/// An element in its current configuration: its skeleton points and radius.
+/// An element in its current configuration (112 bytes): its skeleton points and radius.
 #[derive(Clone, Copy, Debug)]
 pub struct Hull {
     /// Skeleton points; only the first `count` are used.
     pub points: [Vec3; 3],
-    /// 1 (sphere), 2 (connection) or 3 (PFacet).
-    pub count: usize,
-    /// Radius the skeleton is grown by.
-    pub radius: Real,
     /// Mean of the skeleton points.
     pub centroid: Vec3,
-    /// Unit normal of a PFacet's plane (zero for the other elements or a degenerate one).
-    pub normal: Vec3,
+    /// Radius the skeleton is grown by.
+    pub radius: Real,
+    /// 1 (sphere), 2 (connection) or 3 (PFacet).
+    pub count: u32,
 }
 
 impl Hull {
-    /// The skeleton points in use.
-    pub fn skeleton(&self) -> &[Vec3] {
-        &self.points[..self.count]
-    }
-
     /// The hull of the first `count` (1 to 3) of `points` grown by `radius`.
     #[inline]
     pub fn new(points: [Vec3; 3], count: usize, radius: Real) -> Hull {
-        let z = Vec3::zeros();
-        let mut h = Hull { points, count, radius, centroid: z, normal: z };
+        let mut h = Hull { points, centroid: points[0], radius, count: 1 };
         match count {
             1 => fill::<1>(&mut h, points, radius),
             2 => fill::<2>(&mut h, points, radius),
@@ -71,18 +68,12 @@ pub fn write_hull(model: &Model, e: Element, h: &mut Hull) {
 }
 
 /// [`Hull::new`] written into `h`, with the count known when compiled (the centroid's sum
-/// unrolled, the normal only for a PFacet).
+/// unrolled).
 #[inline(always)]
 fn fill<const COUNT: usize>(h: &mut Hull, points: [Vec3; 3], radius: Real) {
     h.centroid = points[..COUNT].iter().sum::<Vec3>() / COUNT as Real;
-    h.normal = if COUNT == 3 {
-        let [p, q, r] = points;
-        (q - p).cross(&(r - p)).try_normalize(0.0).unwrap_or_else(Vec3::zeros)
-    } else {
-        Vec3::zeros()
-    };
     h.points = points;
-    h.count = COUNT;
+    h.count = COUNT as u32;
     h.radius = radius;
 }
 
@@ -90,74 +81,111 @@ fn fill<const COUNT: usize>(h: &mut Hull, points: [Vec3; 3], radius: Real) {
 #[inline]
 pub fn hull(model: &Model, e: Element) -> Hull {
     let z = Vec3::zeros();
-    let mut h = Hull { points: [z; 3], count: 1, radius: 0.0, centroid: z, normal: z };
+    let mut h = Hull { points: [z; 3], centroid: z, radius: 0.0, count: 1 };
     write_hull(model, e, &mut h);
     h
 }
 
-/// Whether `a` and `b` are proven apart by a slab normal to `axis` (any non-zero vector):
-/// min over b of x·n − max over a of x·n > r_a + r_b, n = axis/|axis|.
+/// (min, max) of x·axis over the first `count` of `points`.
+#[inline]
+fn extent(points: &[Vec3; 3], count: u32, axis: &Vec3) -> (Real, Real) {
+    points[..count as usize]
+        .iter()
+        .map(|x| x.dot(axis))
+        .fold((Real::INFINITY, Real::NEG_INFINITY), |(lo, hi), d| (lo.min(d), hi.max(d)))
+}
+
+/// Whether a gap along an axis of squared length `len2` exceeds `reach` times its length:
+/// gap > 0 and gap² > reach²·len2 (no square root).
+#[inline]
+fn wider(gap: Real, reach: Real, len2: Real) -> bool {
+    gap > 0.0 && gap * gap > reach * reach * len2
+}
+
+/// Whether `a` and `b` are proven apart by a slab normal to `axis` (any non-zero vector), `b`
+/// on its positive side: min over b of x·u − max over a of x·u > (r_a + r_b)·|u|.
+#[cfg(test)]
 pub fn separated_along(a: &Hull, b: &Hull, axis: &Vec3) -> bool {
+    separated_points(&a.points, a.count, &b.points, b.count, a.radius + b.radius, axis)
+}
+
+/// [`separated_along`] for the stored points `pa`, `pb` (the first `na`, `nb` used) and the
+/// sum of the radii `reach`.
+#[inline(always)]
+fn separated_points(
+    pa: &[Vec3; 3],
+    na: u32,
+    pb: &[Vec3; 3],
+    nb: u32,
+    reach: Real,
+    axis: &Vec3,
+) -> bool {
     let len2 = axis.norm_squared();
     if !(len2 > 0.0) {
         return false;
     }
-    let max_a = a.skeleton().iter().map(|x| x.dot(axis)).fold(Real::NEG_INFINITY, Real::max);
-    let min_b = b.skeleton().iter().map(|x| x.dot(axis)).fold(Real::INFINITY, Real::min);
-    let gap = min_b - max_a;
-    let reach = a.radius + b.radius;
-    gap > 0.0 && gap * gap > reach * reach * len2
+    let max_a = pa[..na as usize].iter().map(|x| x.dot(axis)).fold(Real::NEG_INFINITY, Real::max);
+    let min_b = pb[..nb as usize].iter().map(|x| x.dot(axis)).fold(Real::INFINITY, Real::min);
+    wider(min_b - max_a, reach, len2)
 }
 
 /// Whether `a` and `b` are proven apart, by the axis joining their centroids, then (for
-/// PFacets) by their face normals, on either side: with n the unit normal of a PFacet h and o
-/// the other body, apart when min_o(x·n) − h₀·n > r_a + r_b or h₀·n − max_o(x·n) > r_a + r_b;
-/// then, for two PFacets, by their in-plane edge normals u (pointing out of the PFacet):
-/// min_o(x·u) − max_h(x·u) > (r_a + r_b)·|u|. The last separates the near misses of a flat
-/// mesh whose nodes are thick next to its cells (triangles two cells apart, side by side in
-/// one plane), which neither the centroid axis nor the face normals can.
+/// PFacets) by their face normals n, on either side: apart when one body's extent along n
+/// ends more than (r_a + r_b)·|n| before the other's begins; then, for two PFacets, by their
+/// in-plane edge normals u (pointing out of the PFacet): min_o(x·u) − max_h(x·u) >
+/// (r_a + r_b)·|u|. The last separates the near misses of a flat mesh whose nodes are thick
+/// next to its cells (triangles two cells apart, side by side in one plane), which neither
+/// the centroid axis nor the face normals can.
 pub fn proven_apart(a: &Hull, b: &Hull) -> bool {
+    let (pa, pb) = (&a.points, &b.points);
+    let reach = a.radius + b.radius;
     let axis = b.centroid - a.centroid;
-    if separated_along(a, b, &axis) {
+    if separated_points(pa, a.count, pb, b.count, reach, &axis) {
         return true;
     }
-    let reach = a.radius + b.radius;
-    for (h, other) in [(a, b), (b, a)] {
-        if h.count == 3 && h.normal != Vec3::zeros() {
-            let n = &h.normal;
-            let plane = h.points[0].dot(n);
-            let (lo, hi) = other
-                .skeleton()
-                .iter()
-                .map(|x| x.dot(n))
-                .fold((Real::INFINITY, Real::NEG_INFINITY), |(lo, hi), d| (lo.min(d), hi.max(d)));
-            if lo - plane > reach || plane - hi > reach {
+    // a PFacet's normal (x₁ − x₀) × (x₂ − x₀) (zero for the other elements and a degenerate PFacet)
+    let normal = |h: &Hull| {
+        if h.count == 3 {
+            let [p, q, r] = &h.points;
+            (q - p).cross(&(r - p))
+        } else {
+            Vec3::zeros()
+        }
+    };
+    let (na, nb) = (normal(a), normal(b));
+    for (h, ph, n, po, other) in [(a, pa, &na, pb, b), (b, pb, &nb, pa, a)] {
+        if h.count == 3 {
+            // (the PFacet's own extent along its normal is its plane x₀·n)
+            let plane = ph[0].dot(n);
+            let (lo, hi) = extent(po, other.count, n);
+            let len2 = n.norm_squared();
+            if wider(lo - plane, reach, len2) || wider(plane - hi, reach, len2) {
                 return true;
             }
         }
     }
     // two PFacets only: a sphere or a connection beside a PFacet is separated by the centroid
     // axis already, and the test would be paid by every sphere resting on a membrane
-    a.count == 3 && b.count == 3 && (apart_beyond_an_edge(a, b) || apart_beyond_an_edge(b, a))
+    a.count == 3
+        && b.count == 3
+        && (apart_beyond_an_edge(pa, &na, pb, reach) || apart_beyond_an_edge(pb, &nb, pa, reach))
 }
 
-/// Whether `other` lies beyond one of PFacet `h`'s edges by more than the two radii, along
-/// that edge's in-plane normal u = (x_{k+1} − x_k) × n (pointing out of the triangle, with
-/// |u| = |x_{k+1} − x_k| since n is a unit normal to the edge): min_other(x·u) − x_k·u >
-/// (r_h + r_other)·|u|, the edge's corners being h's farthest points along u. Computed only
+/// Whether PFacet `other` lies beyond one of PFacet `h`'s edges (`h` its corners, `n` its
+/// normal) by more than `reach`, along that edge's in-plane normal u = (x_{k+1} − x_k) × n
+/// (pointing out of the triangle): min_other(x·u) − max_h(x·u) > reach·|u|. Computed only
 /// for the pairs that reach it, and compared squared (no square root).
 #[inline]
-fn apart_beyond_an_edge(h: &Hull, other: &Hull) -> bool {
-    if h.normal == Vec3::zeros() {
+fn apart_beyond_an_edge(h: &[Vec3; 3], n: &Vec3, other: &[Vec3; 3], reach: Real) -> bool {
+    if *n == Vec3::zeros() {
         return false;
     }
-    let reach = h.radius + other.radius;
     (0..3).any(|k| {
-        let edge = h.points[(k + 1) % 3] - h.points[k];
-        let u = edge.cross(&h.normal);
-        let from = h.points[k].dot(&u);
-        let gap = other.skeleton().iter().map(|x| x.dot(&u)).fold(Real::INFINITY, Real::min) - from;
-        gap > 0.0 && gap * gap > reach * reach * edge.norm_squared()
+        let u = (h[(k + 1) % 3] - h[k]).cross(n);
+        // the edge's corners are h's farthest points along u
+        let from = h[k].dot(&u);
+        let (to, _) = extent(other, 3, &u);
+        wider(to - from, reach, u.norm_squared())
     })
 }
 
@@ -211,14 +239,8 @@ mod tests {
             [Vec3::new(0.0, h, 0.0), Vec3::new(h, 2.0 * h, 0.0), Vec3::new(0.0, 2.0 * h, 0.0)],
             0.003,
         );
-        let cp = closest_points_triangle_triangle(
-            &a.points[0],
-            &a.points[1],
-            &a.points[2],
-            &b.points[0],
-            &b.points[1],
-            &b.points[2],
-        );
+        let [p, q] = [a, b].map(|h| h.points);
+        let cp = closest_points_triangle_triangle(&p[0], &p[1], &p[2], &q[0], &q[1], &q[2]);
         let distance = (cp.point_1 - cp.point_0).norm();
         assert!(distance > 0.006, "{distance}");
         let axis = b.centroid - a.centroid;
@@ -228,6 +250,21 @@ mod tests {
 
     fn vec3() -> impl Strategy<Value = Vec3> {
         (-1.0..1.0f64, -1.0..1.0f64, -1.0..1.0f64).prop_map(|(x, y, z)| Vec3::new(x, y, z))
+    }
+
+    /// The layout's size (what the contact stage writes per element and step), and a hull
+    /// with a coordinate that is not a number is never apart.
+    #[test]
+    fn a_hull_is_112_bytes_and_nan_is_never_apart() {
+        assert_eq!(std::mem::size_of::<Hull>(), 112);
+        let origin = Hull::new([Vec3::zeros(); 3], 1, 0.1);
+        let base = [Vec3::new(5.0, 0.0, 0.0), Vec3::new(6.0, 0.0, 0.0), Vec3::new(5.0, 1.0, 0.0)];
+        assert!(proven_apart(&origin, &tri(base, 0.1)));
+        for k in 0..3 {
+            let mut p = base;
+            p[k].y = Real::NAN;
+            assert!(!proven_apart(&origin, &tri(p, 0.1)) && !proven_apart(&tri(p, 0.1), &origin));
+        }
     }
 
     proptest! {
