@@ -229,8 +229,6 @@ pub struct LinkForces {
     pub torque_on_2: Vec3,
     /// The shear force's torque about each node, −(L/2) n × Fs (the same on both).
     pub lever_torque: Vec3,
-    /// Length L of the link at this update (zero for a broken link).
-    pub length: Real,
     /// Normal force Fn (compression positive).
     pub normal_force: Real,
     /// Shear force on node 2.
@@ -476,7 +474,6 @@ fn assemble(
         torque_on_1: lever - m,
         torque_on_2: lever + m,
         lever_torque: lever,
-        length: l,
         normal_force: fn_,
         shear_force: fs,
         twist_moment: mt,

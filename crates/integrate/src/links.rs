@@ -28,25 +28,25 @@ pub struct LinkUpdate {
 const CHUNK: usize = 512;
 
 /// What the force assembly, the energy watch and the output read of a link's last update
-/// beyond its state (48 bytes; the full `LinkForces` of `update_link` is 224). With the
-/// state's normal n and shear force Fs after the update, the loads on the nodes are
-/// F₂ = Fn·n + Fs = −F₁, τ₁ = τ_lever − M, τ₂ = τ_lever + M with τ_lever = −(L/2) n × Fs
-/// ([`Links::force_on_2`], [`Links::lever_torque`], computed as the update computes them: the
-/// same bits); the twisting moment is (M·n)n and the bending moment the rest.
+/// (88 bytes; the full `LinkForces` of `update_link` is 216). The loads on the nodes are
+/// F₁ = −F₂, τ₁ = τ_lever − M, τ₂ = τ_lever + M; the shear force is the state's
+/// (`LinkState::shear_force`), the twisting moment (M·n)n and the bending moment the rest.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct LinkLoad {
+    /// Force on node 2, Fn·n + Fs (N).
+    pub force_on_2: Vec3,
+    /// The shear force's torque about each node, −(L/2) n × Fs (N·m; the same on both).
+    pub lever_torque: Vec3,
     /// Moment on node 2, Mt + Mb (N·m).
     pub moment_on_2: Vec3,
     /// Normal force Fn (N, compression positive).
     pub normal_force: Real,
-    /// Length L of the link at the update (m).
-    pub length: Real,
     /// Elastic energy stored after the update (J).
     pub elastic_energy: Real,
 }
 
-/// Every beam link: constants, state, and the forces of the last step. Per link, 220 bytes:
-/// nodes 8, class 4, springs 40, state 120, loads 48 (and 16 of the node → loads index); the
+/// Every beam link: constants, state, and the forces of the last step. Per link, 260 bytes:
+/// nodes 8, class 4, springs 40, state 120, loads 88 (and 16 of the node → loads index); the
 /// constants links share (limits, radius, failure mode) are kept once per class.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct Links {
@@ -71,11 +71,6 @@ pub struct Links {
     /// Per-chunk sums of the last update (a buffer kept between steps).
     #[serde(skip)]
     chunk_sums: Vec<LinkUpdate>,
-    /// Per link, the force on node 2 and the lever torque of the last update, kept only when
-    /// the loads are summed node by node in parallel ([`Links::sums_node_by_node`]), where
-    /// each link is read twice; empty on one thread, where they are computed once per link.
-    #[serde(skip)]
-    node_side: Vec<[Vec3; 2]>,
 }
 
 /// Events of one links update.
@@ -104,7 +99,6 @@ impl Links {
             node_offsets: Vec::new(),
             node_loads: Vec::new(),
             chunk_sums: Vec::new(),
-            node_side: Vec::new(),
         };
         let mut class_of: HashMap<(u32, u64), u32> = HashMap::new();
         for c in &model.connections {
@@ -185,7 +179,6 @@ impl Links {
             node_offsets: Vec::new(),
             node_loads: Vec::new(),
             chunk_sums: Vec::new(),
-            node_side: Vec::new(),
         };
         fresh.index_nodes();
         // a checkpoint written before the index stopped at the last node held a row per
@@ -221,73 +214,49 @@ impl Links {
         if self.loads.len() != self.nodes.len() {
             self.loads = vec![LinkLoad::default(); self.nodes.len()];
         }
-        let node_by_node = Self::sums_node_by_node(self.len());
-        if node_by_node {
-            self.node_side.resize(self.len(), [Vec3::zeros(); 2]);
-        } else {
-            self.node_side = Vec::new();
-        }
         let classes = &self.classes;
-        // one chunk of links: updates them, writes their loads (and their force on node 2
-        // and lever torque into `side` when summed node by node), returns the chunk's sums
-        let chunk = |nodes: &[[u32; 2]],
-                     class: &[u32],
-                     springs: &[LinkSpring],
-                     state: &mut [LinkState],
-                     loads: &mut [LinkLoad],
-                     mut side: Option<&mut [[Vec3; 2]]>| {
-            let mut sums = LinkUpdate::default();
-            for k in 0..nodes.len() {
-                let [a, b] = nodes[k].map(|n| n as usize);
-                let kin = LinkKinematics {
-                    x1: p.pos[a],
-                    x2: p.pos[b],
-                    v1: p.vel[a],
-                    v2: p.vel[b],
-                    w1: p.ang_vel[a],
-                    w2: p.ang_vel[b],
-                    q1: p.ori[a],
-                    q2: p.ori[b],
-                };
-                let class = &classes[class[k] as usize];
-                let f = update_link_parts(class, &springs[k], &mut state[k], &kin, dt);
-                match f.event {
-                    LinkEvent::BrokeInTension | LinkEvent::Separated => sums.events.broken += 1,
-                    LinkEvent::LostCohesion => sums.events.decohered += 1,
-                    LinkEvent::None => {}
-                }
-                sums.elastic_energy += f.elastic_energy;
-                sums.dissipated += f.dissipated.total();
-                loads[k] = LinkLoad {
-                    moment_on_2: f.twist_moment + f.bending_moment,
-                    normal_force: f.normal_force,
-                    length: f.length,
-                    elastic_energy: f.elastic_energy,
-                };
-                if let Some(side) = side.as_deref_mut() {
-                    side[k] = [f.force_on_2, f.lever_torque];
-                }
-            }
-            sums
-        };
-        let parts = (
+        (
             self.nodes.par_chunks(CHUNK),
             self.class.par_chunks(CHUNK),
             self.springs.par_chunks(CHUNK),
             self.state.par_chunks_mut(CHUNK),
             self.loads.par_chunks_mut(CHUNK),
-        );
-        if node_by_node {
-            (parts.0, parts.1, parts.2, parts.3, parts.4, self.node_side.par_chunks_mut(CHUNK))
-                .into_par_iter()
-                .map(|(n, c, sp, st, l, side)| chunk(n, c, sp, st, l, Some(side)))
-                .collect_into_vec(&mut self.chunk_sums);
-        } else {
-            parts
-                .into_par_iter()
-                .map(|(n, c, sp, st, l)| chunk(n, c, sp, st, l, None))
-                .collect_into_vec(&mut self.chunk_sums);
-        }
+        )
+            .into_par_iter()
+            .map(|(nodes, class, springs, state, loads)| {
+                let mut sums = LinkUpdate::default();
+                for k in 0..nodes.len() {
+                    let [a, b] = nodes[k].map(|n| n as usize);
+                    let kin = LinkKinematics {
+                        x1: p.pos[a],
+                        x2: p.pos[b],
+                        v1: p.vel[a],
+                        v2: p.vel[b],
+                        w1: p.ang_vel[a],
+                        w2: p.ang_vel[b],
+                        q1: p.ori[a],
+                        q2: p.ori[b],
+                    };
+                    let class = &classes[class[k] as usize];
+                    let f = update_link_parts(class, &springs[k], &mut state[k], &kin, dt);
+                    match f.event {
+                        LinkEvent::BrokeInTension | LinkEvent::Separated => sums.events.broken += 1,
+                        LinkEvent::LostCohesion => sums.events.decohered += 1,
+                        LinkEvent::None => {}
+                    }
+                    sums.elastic_energy += f.elastic_energy;
+                    sums.dissipated += f.dissipated.total();
+                    loads[k] = LinkLoad {
+                        force_on_2: f.force_on_2,
+                        lever_torque: f.lever_torque,
+                        moment_on_2: f.twist_moment + f.bending_moment,
+                        normal_force: f.normal_force,
+                        elastic_energy: f.elastic_energy,
+                    };
+                }
+                sums
+            })
+            .collect_into_vec(&mut self.chunk_sums);
         self.chunk_sums.iter().fold(LinkUpdate::default(), |a, c| LinkUpdate {
             events: LinkEvents {
                 broken: a.events.broken + c.events.broken,
@@ -298,33 +267,9 @@ impl Links {
         })
     }
 
-    /// Force on node 2 of link `k` at its last update, Fn·n + Fs (N; zero before the first).
-    pub fn force_on_2(&self, k: usize) -> Vec3 {
-        self.loads.get(k).map_or_else(Vec3::zeros, |l| force_and_lever(&self.state[k], l).0)
-    }
-
-    /// The shear force's torque about each node of link `k` at its last update, −(L/2) n × Fs
-    /// (N·m; zero before the first).
-    pub fn lever_torque(&self, k: usize) -> Vec3 {
-        self.loads.get(k).map_or_else(Vec3::zeros, |l| force_and_lever(&self.state[k], l).1)
-    }
-
-    /// Whether the loads of `links` links are summed node by node, in parallel (more than one
-    /// thread and two chunks of links), rather than link by link on one thread.
-    fn sums_node_by_node(links: usize) -> bool {
-        rayon::current_num_threads() > 1 && links >= 2 * CHUNK
-    }
-
-    /// Adds the last update's loads to the per-particle `force` and `torque` sums, each node
-    /// receiving its links' loads in link order: node by node in parallel (from `node_side`,
-    /// kept by the update for this), or link by link on one thread or for a few links
-    /// ([`Links::add_loads_in_link_order`]); the same bits either way, independent of the
-    /// thread count.
+    /// Adds the last update's loads to the per-particle `force` and `torque` sums, node by
+    /// node in link order (parallel over nodes, independent of the thread count).
     pub fn add_loads(&self, force: &mut [Vec3], torque: &mut [Vec3]) {
-        if self.node_side.len() != self.len() || self.is_empty() {
-            self.add_loads_in_link_order(force, torque);
-            return;
-        }
         let n = self.node_offsets.len().saturating_sub(1).min(force.len());
         (&mut force[..n], &mut torque[..n])
             .into_par_iter()
@@ -333,50 +278,17 @@ impl Links {
             .for_each(|(i, (f, t))| {
                 let (s, e) = (self.node_offsets[i] as usize, self.node_offsets[i + 1] as usize);
                 for &code in &self.node_loads[s..e] {
-                    let k = (code / 2) as usize;
-                    let [force, lever] = self.node_side[k];
-                    let moment = self.loads[k].moment_on_2;
+                    let l = &self.loads[(code / 2) as usize];
                     if code % 2 == 0 {
-                        *f -= force;
-                        *t += lever - moment;
+                        *f -= l.force_on_2;
+                        *t += l.lever_torque - l.moment_on_2;
                     } else {
-                        *f += force;
-                        *t += lever + moment;
+                        *f += l.force_on_2;
+                        *t += l.lever_torque + l.moment_on_2;
                     }
                 }
             });
     }
-
-    /// [`Links::add_loads`] on one thread, link by link: each link's force and lever torque
-    /// computed once, for both its nodes. A node still receives its links' loads in link order
-    /// (node 1's before node 2's for one link), as the node-major walk adds them.
-    pub fn add_loads_in_link_order(&self, force: &mut [Vec3], torque: &mut [Vec3]) {
-        for ((nodes, state), load) in self.nodes.iter().zip(&self.state).zip(&self.loads) {
-            let (f2, lever) = force_and_lever(state, load);
-            let m = load.moment_on_2;
-            let [a, b] = nodes.map(|n| n as usize);
-            if let (Some(f), Some(t)) = (force.get_mut(a), torque.get_mut(a)) {
-                *f -= f2;
-                *t += lever - m;
-            }
-            if let (Some(f), Some(t)) = (force.get_mut(b), torque.get_mut(b)) {
-                *f += f2;
-                *t += lever + m;
-            }
-        }
-    }
-}
-
-/// The force on node 2, F₂ = Fn·n + Fs, and the lever torque −(L/2) n × Fs of a link from its
-/// state after the update and its load, with the operations of the update's `assemble` (the
-/// same bits); zero for a broken link, as its update returned.
-#[inline(always)]
-fn force_and_lever(s: &LinkState, l: &LinkLoad) -> (Vec3, Vec3) {
-    if s.status == LinkStatus::Broken {
-        return (Vec3::zeros(), Vec3::zeros());
-    }
-    let (n, fs) = (s.normal, s.shear_force);
-    (n * l.normal_force + fs, n.cross(&fs) * (-0.5 * l.length))
 }
 
 #[cfg(test)]
@@ -405,48 +317,8 @@ mod tests {
             + size_of::<LinkLoad>();
         assert_eq!(
             (size_of::<LinkSpring>(), size_of::<LinkState>(), size_of::<LinkLoad>(), per_link),
-            (40, 120, 48, 220)
+            (40, 120, 88, 260)
         );
-    }
-
-    /// The force and lever torque computed from the state and the lean load are the update's
-    /// own, to the bit (a bent, stretched and twisted chain; then one link broken).
-    #[test]
-    fn loads_from_the_state_are_the_updates_own() {
-        let mut model = chain_model();
-        let p = &mut model.particles;
-        for i in 0..p.len() {
-            let k = i as Real;
-            p.pos[i] += Vec3::new(1e-4 * k * k, 2e-4 * k, -1e-4 * k);
-            p.vel[i] = Vec3::new(0.01 * k, -0.02, 0.03 * k);
-            p.ang_vel[i] = Vec3::new(0.1, 0.2 * k, -0.3);
-        }
-        let mut links = Links::from_model(&model, LinkKinematicsMode::Beam);
-        links.state[1].status = LinkStatus::Broken;
-        let before = links.state.clone();
-        links.update(&model.particles, 1e-5);
-        for k in 0..links.len() {
-            let [a, b] = links.nodes[k].map(|n| n as usize);
-            let p = &model.particles;
-            let kin = LinkKinematics {
-                x1: p.pos[a],
-                x2: p.pos[b],
-                v1: p.vel[a],
-                v2: p.vel[b],
-                w1: p.ang_vel[a],
-                w2: p.ang_vel[b],
-                q1: p.ori[a],
-                q2: p.ori[b],
-            };
-            let class = &links.classes[links.class[k] as usize];
-            let mut state = before[k].clone();
-            let f = update_link_parts(class, &links.springs[k], &mut state, &kin, 1e-5);
-            assert_eq!(links.force_on_2(k), f.force_on_2, "link {k}");
-            assert_eq!(links.lever_torque(k), f.lever_torque, "link {k}");
-            assert_eq!(links.loads[k].moment_on_2, f.twist_moment + f.bending_moment);
-        }
-        assert!(links.force_on_2(0).norm() > 0.0 && links.lever_torque(0).norm() > 0.0);
-        assert_eq!(links.force_on_2(1), Vec3::zeros());
     }
 
     #[test]

@@ -153,11 +153,10 @@ pub(crate) fn links(sim: &Simulation) -> LinkTable {
         ..LinkTable::default()
     };
     if links.loads.len() == count {
-        for (k, (f, s)) in links.loads.iter().zip(&links.state).enumerate() {
+        for (f, s) in links.loads.iter().zip(&links.state) {
             t.normal_force.push(f.normal_force);
             t.shear_force.extend([s.shear_force.x, s.shear_force.y, s.shear_force.z]);
-            let force = links.force_on_2(k);
-            t.force.extend([force.x, force.y, force.z]);
+            t.force.extend([f.force_on_2.x, f.force_on_2.y, f.force_on_2.z]);
         }
     } else {
         // no step yet (the forces are not saved in checkpoints)
