@@ -5,7 +5,7 @@
 use criterion::{criterion_group, criterion_main, Criterion};
 use flexdem_contact::{
     update_frictional_contact, update_link, ContactKinematics, FrictionalContact, FrictionalParams,
-    LinkKinematics, LinkKinematicsMode, LinkParams, LinkState, Material,
+    LinkKinematics, LinkKinematicsMode, LinkParams, LinkPlastic, LinkState, Material,
 };
 use flexdem_geom::{Real, Vec3};
 use nalgebra::UnitQuaternion;
@@ -107,12 +107,13 @@ fn link(c: &mut Criterion, mode: LinkKinematicsMode, name: &str) {
             q2: UnitQuaternion::from_scaled_axis(rng.vec(1e-3)) * q2,
         });
     }
+    let mut plastic = vec![LinkPlastic::default(); POOL];
     let mut i = 0;
     c.bench_function(name, |b| {
         b.iter(|| {
             i = (i + 1) % POOL;
-            let f =
-                update_link(black_box(&p), &mut states[i], black_box(&kins[i]), black_box(1e-5));
+            let (s, pl) = (&mut states[i], &mut plastic[i]);
+            let f = update_link(black_box(&p), s, pl, black_box(&kins[i]), black_box(1e-5));
             black_box(f)
         })
     });

@@ -41,7 +41,7 @@ pub use frictional::{
 };
 pub use link::{
     update_link, update_link_parts, LinkClass, LinkEvent, LinkForces, LinkKinematics,
-    LinkKinematicsMode, LinkParams, LinkSpring, LinkState, LinkStatus,
+    LinkKinematicsMode, LinkParams, LinkPlastic, LinkSpring, LinkState, LinkStatus,
 };
 pub use material::{effective_strength, ContactDamping, FailureMode, Material, MaterialError};
 pub use rotation::{rotate_about_axis, rotate_between, rotation_vector, transport_tangent};

@@ -158,8 +158,9 @@ pub enum LinkEvent {
     Separated,
 }
 
-/// State of a link, carried from step to step (120 bytes): what the update reads and writes,
-/// nothing else. The energy a link dissipates is returned by each update
+/// State of a link, carried from step to step (88 bytes): what the update reads and writes,
+/// nothing else, but for the plastic part ([`LinkPlastic`]), which only the links of a plastic
+/// material need. The energy a link dissipates is returned by each update
 /// ([`LinkForces::dissipated`]) for the caller to sum.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct LinkState {
@@ -171,13 +172,20 @@ pub struct LinkState {
     /// rotation (q2·q2⁰⁻¹)·(q1·q1⁰⁻¹)⁻¹ is q2·`rest_rotation`·q1⁻¹, two quaternion products
     /// where the two references would take three.
     pub rest_rotation: UnitQuaternion<Real>,
-    /// Plastic elongation e_p (m): the normal force is kn·(L0 + e_p − L).
-    pub plastic_elongation: Real,
-    /// Plastic relative rotation (rad), in node 1's body frame: the world vector is
-    /// q1·`plastic_rotation`, so that it turns with the link.
-    pub plastic_rotation: Vec3,
     /// Cohesive, frictional or broken.
     pub status: LinkStatus,
+}
+
+/// The plastic part of a link's state (32 bytes), carried from step to step: zero for the
+/// links of a fragile material, which lose their cohesion at a limit instead of yielding
+/// (the engine keeps it only when some material is plastic).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct LinkPlastic {
+    /// Plastic elongation e_p (m): the normal force is kn·(L0 + e_p − L).
+    pub elongation: Real,
+    /// Plastic relative rotation (rad), in node 1's body frame: the world vector is
+    /// q1·`rotation`, so that it turns with the link.
+    pub rotation: Vec3,
 }
 
 impl LinkState {
@@ -188,8 +196,6 @@ impl LinkState {
             normal: (x2 - x1).try_normalize(0.0).unwrap_or_else(Vec3::x),
             shear_force: Vec3::zeros(),
             rest_rotation: q2.inverse() * q1,
-            plastic_elongation: 0.0,
-            plastic_rotation: Vec3::zeros(),
             status: LinkStatus::Cohesive,
         }
     }
@@ -260,16 +266,18 @@ struct Trial {
 pub fn update_link(
     params: &LinkParams,
     state: &mut LinkState,
+    plastic: &mut LinkPlastic,
     kin: &LinkKinematics,
     dt: Real,
 ) -> LinkForces {
-    update_link_parts(&params.class, &params.spring, state, kin, dt)
+    update_link_parts(&params.class, &params.spring, state, plastic, kin, dt)
 }
 
 /// One step of a beam link (eq 1, 2, 5–8; see the module documentation for the kinematics,
 /// limits and failure rules), with its constants in two parts: the `class` it shares with
-/// links of the same material and radius, and its own `spring`. Updates `state` and returns
-/// the forces and torques on both nodes.
+/// links of the same material and radius, and its own `spring`. Updates `state` and
+/// `plastic` (written only for a plastic material: a fragile link may be given a zero one
+/// that is not kept) and returns the forces and torques on both nodes.
 ///
 /// Inlined into the links' loop, where only the fields of the engine's `LinkLoad` are kept:
 /// the rest is computed only for callers that read it.
@@ -278,6 +286,7 @@ pub fn update_link_parts(
     class: &LinkClass,
     spring: &LinkSpring,
     state: &mut LinkState,
+    plastic: &mut LinkPlastic,
     kin: &LinkKinematics,
     dt: Real,
 ) -> LinkForces {
@@ -303,12 +312,12 @@ pub fn update_link_parts(
     let trial = Trial {
         n,
         l,
-        fn_: k.kn * (spring.rest_length + state.plastic_elongation - l),
+        fn_: k.kn * (spring.rest_length + plastic.elongation - l),
         fs: rotated - us * (ks * dt),
         ks,
     };
     match state.status {
-        LinkStatus::Cohesive => cohesive_step(class, spring, state, kin, &trial),
+        LinkStatus::Cohesive => cohesive_step(class, spring, state, plastic, kin, &trial),
         _ => frictional_step(class, spring, state, &trial, 0.0, false),
     }
 }
@@ -318,6 +327,7 @@ fn cohesive_step(
     p: &LinkClass,
     spring: &LinkSpring,
     s: &mut LinkState,
+    plastic: &mut LinkPlastic,
     kin: &LinkKinematics,
     t: &Trial,
 ) -> LinkForces {
@@ -328,10 +338,10 @@ fn cohesive_step(
     // rotation.
     let (mut mt, mut mb, theta) = if p.moments {
         let theta = rotation_vector(&(kin.q2 * s.rest_rotation * kin.q1.inverse()));
-        let el = if s.plastic_rotation == Vec3::zeros() {
+        let el = if plastic.rotation == Vec3::zeros() {
             theta
         } else {
-            theta - kin.q1 * s.plastic_rotation
+            theta - kin.q1 * plastic.rotation
         };
         let tw = n * n.dot(&el);
         (tw * -k.kt, (el - tw) * -k.kb, theta)
@@ -363,7 +373,7 @@ fn cohesive_step(
                 };
             }
             fn_ = -tmax;
-            s.plastic_elongation = t.l - spring.rest_length - tmax / k.kn;
+            plastic.elongation = t.l - spring.rest_length - tmax / k.kn;
             diss.plastic += cap_dissipation(-t.fn_, tmax, k.kn);
         }
     }
@@ -395,7 +405,7 @@ fn cohesive_step(
     if twist_cap.is_some() || bend_cap.is_some() {
         // New elastic rotation from the capped moments; the rest is plastic.
         let el = -(mt * inv(k.kt) + mb * inv(k.kb));
-        s.plastic_rotation = kin.q1.inverse() * (theta - el);
+        plastic.rotation = kin.q1.inverse() * (theta - el);
     }
     s.shear_force = fs;
     let capped = fn_ != t.fn_ || shear_cap.is_some() || twist_cap.is_some() || bend_cap.is_some();

@@ -156,7 +156,7 @@ fn plastic_tension_caps_unloads_elastically_and_dissipates() {
     }
     assert_eq!(sim.s.status, LinkStatus::Cohesive);
     let e_p = 300.0 * du - limit / kn;
-    assert!((sim.s.plastic_elongation - e_p).abs() < 1e-9 * L);
+    assert!((sim.plastic.elongation - e_p).abs() < 1e-9 * L);
     // Dissipation = cap × plastic elongation.
     assert!((sim.dissipated.plastic - limit * e_p).abs() < 1e-6 * limit * e_p);
     // Unloading is elastic with slope kn, around the new rest length L0 + e_p.
@@ -223,7 +223,7 @@ fn plastic_bending_cap_keeps_a_plastic_rotation() {
     }
     let theta = 2.0 * dth * n as Real;
     let theta_p = theta - mb_lim / kb;
-    assert!((sim.s.plastic_rotation.z - theta_p).abs() < 1e-6 * theta_p);
+    assert!((sim.plastic.rotation.z - theta_p).abs() < 1e-6 * theta_p);
     assert!((sim.dissipated.plastic - mb_lim * theta_p).abs() < 1e-3 * mb_lim * theta_p);
     // Unloading by 1.5·Mlim/kb is elastic: the moment goes from −Mlim to +Mlim/2 with no new
     // dissipation.

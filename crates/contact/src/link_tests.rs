@@ -16,6 +16,7 @@ pub(super) fn mat() -> Material {
 pub(super) struct Sim {
     pub p: LinkParams,
     pub s: LinkState,
+    pub plastic: LinkPlastic,
     pub x: [Vec3; 2],
     pub q: [UnitQuaternion<Real>; 2],
     pub last: LinkForces,
@@ -31,6 +32,7 @@ impl Sim {
         Sim {
             p,
             s,
+            plastic: LinkPlastic::default(),
             x,
             q,
             last: LinkForces::default(),
@@ -75,7 +77,7 @@ impl Sim {
             q1: q[0],
             q2: q[1],
         };
-        let f = update_link(&self.p, &mut self.s, &kin, dt);
+        let f = update_link(&self.p, &mut self.s, &mut self.plastic, &kin, dt);
         self.dissipated += f.dissipated;
         let o = &self.last;
         self.work -= 0.5
@@ -349,6 +351,7 @@ proptest! {
             shear_force: rot * a.s.shear_force,
             ..a.s.clone()
         };
+        b.plastic = a.plastic;
         b.x = [rot * a.x[0] + shift, rot * a.x[1] + shift];
         b.q = [rot * a.q[0], rot * a.q[1]];
         let dt = 1e-4;

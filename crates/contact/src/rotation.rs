@@ -87,7 +87,7 @@ fn twist_tangent(t: Vec3, axis: Vec3, angle: Real) -> Vec3 {
 /// drift over millions of steps (by the factor √(|v|²/|t|²): one square root and one
 /// division). When the normal flipped (opposite normals) the history has no meaning and zero
 /// is returned.
-#[inline]
+#[inline(always)]
 pub fn transport_tangent(v: Vec3, n_old: Vec3, n_new: Vec3, twist_angle: Real) -> Vec3 {
     let mag2 = v.norm_squared();
     if mag2 == 0.0 {

@@ -8,7 +8,7 @@
 use criterion::{criterion_group, criterion_main, Criterion};
 use flexdem_contact::{
     update_frictional_contact, update_link, ContactKinematics, FrictionalContact, FrictionalParams,
-    LinkKinematics, LinkKinematicsMode, LinkParams, LinkState, Material,
+    LinkKinematics, LinkKinematicsMode, LinkParams, LinkPlastic, LinkState, Material,
 };
 use flexdem_elements::pairs::{self, Candidate, ConnectionRef, PFacetRef, SphereRef};
 use flexdem_elements::virtual_sphere::{
@@ -275,11 +275,13 @@ fn kernels(crit: &mut Criterion) {
                 )
             })
             .collect();
+        let mut plastic = vec![LinkPlastic::default(); N];
         let mut i = 0;
         crit.bench_function(&format!("link/{label}"), |b| {
             b.iter(|| {
                 i = (i + 1) % N;
-                black_box(update_link(&params, &mut states[i], black_box(&inputs[i]), 1e-6))
+                let (s, p) = (&mut states[i], &mut plastic[i]);
+                black_box(update_link(&params, s, p, black_box(&inputs[i]), 1e-6))
             })
         });
     }

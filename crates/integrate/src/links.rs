@@ -3,11 +3,12 @@
 //! order so that the result does not depend on the number of threads.
 
 use flexdem_contact::{
-    update_link_parts, LinkClass, LinkEvent, LinkKinematics, LinkKinematicsMode, LinkSpring,
-    LinkState, LinkStatus,
+    update_link_parts, FailureMode, LinkClass, LinkEvent, LinkKinematics, LinkKinematicsMode,
+    LinkPlastic, LinkSpring, LinkState, LinkStatus,
 };
 use flexdem_elements::{Model, Particles};
 use flexdem_geom::{Real, Vec3};
+use rayon::iter::Either;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
@@ -45,9 +46,10 @@ pub struct LinkLoad {
     pub elastic_energy: Real,
 }
 
-/// Every beam link: constants, state, and the forces of the last step. Per link, 260 bytes:
-/// nodes 8, class 4, springs 40, state 120, loads 88 (and 16 of the node → loads index); the
-/// constants links share (limits, radius, failure mode) are kept once per class.
+/// Every beam link: constants, state, and the forces of the last step. Per link, 228 bytes:
+/// nodes 8, class 4, springs 40, state 88, loads 88 (and 16 of the node → loads index), and
+/// 32 of plastic state when some material is plastic; the constants links share (limits,
+/// radius, failure mode) are kept once per class.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct Links {
     /// The two nodes of link `i` (those of connection `i`).
@@ -61,6 +63,9 @@ pub struct Links {
     pub springs: Vec<LinkSpring>,
     /// State carried from step to step (shear force, reference rotation, status).
     pub state: Vec<LinkState>,
+    /// The plastic part of link `i`'s state (plastic elongation and rotation), when some class
+    /// is plastic; empty otherwise (a fragile link's is always zero).
+    pub plastic: Vec<LinkPlastic>,
     /// Loads of the last update.
     #[serde(skip)]
     pub loads: Vec<LinkLoad>,
@@ -95,6 +100,7 @@ impl Links {
             class: Vec::with_capacity(n),
             springs: Vec::with_capacity(n),
             state: Vec::with_capacity(n),
+            plastic: Vec::new(),
             loads: Vec::new(),
             node_offsets: Vec::new(),
             node_loads: Vec::new(),
@@ -113,9 +119,17 @@ impl Links {
             links.springs.push(LinkSpring::from_material(material, c.radius, c.rest_length));
             links.state.push(LinkState::new(p.pos[a], p.pos[b], p.ori[a], p.ori[b]));
         }
+        if links.some_plastic() {
+            links.plastic = vec![LinkPlastic::default(); n];
+        }
         links.loads = vec![LinkLoad::default(); links.nodes.len()];
         links.index_nodes();
         links
+    }
+
+    /// Whether some class is plastic (then every link keeps a plastic state).
+    fn some_plastic(&self) -> bool {
+        self.classes.iter().any(|c| c.failure == FailureMode::Plastic)
     }
 
     /// Builds the node → loads index (counting sort, loads of a node in link order), up to
@@ -150,7 +164,7 @@ impl Links {
 
     /// Whether these links (read from a checkpoint, say) fit `model`: one link per
     /// connection, on the connection's nodes, with as many classes (each in range), springs
-    /// and states, and the node → loads index that [`Links::from_model`] builds for them
+    /// and states (and plastic states when a class is plastic), and the node → loads index that [`Links::from_model`] builds for them
     /// (every offset and load code in range). [`Links::update`] and [`Links::add_loads`] index the particles and the
     /// forces with these numbers without further checks. `model` must have been validated
     /// (`Model::validate`: connection node ids in range).
@@ -162,10 +176,12 @@ impl Links {
             && self.nodes.iter().flatten().all(|&n| (n as usize) < n_particles);
         let classes_in_range = self.class.len() == n_links
             && self.class.iter().all(|&c| (c as usize) < self.classes.len());
+        let plastic_states = if self.some_plastic() { n_links } else { 0 };
         if !(same_nodes
             && classes_in_range
             && self.springs.len() == n_links
-            && self.state.len() == n_links)
+            && self.state.len() == n_links
+            && self.plastic.len() == plastic_states)
         {
             return false;
         }
@@ -175,6 +191,7 @@ impl Links {
             class: Vec::new(),
             springs: Vec::new(),
             state: Vec::new(),
+            plastic: Vec::new(),
             loads: Vec::new(),
             node_offsets: Vec::new(),
             node_loads: Vec::new(),
@@ -215,6 +232,14 @@ impl Links {
             self.loads = vec![LinkLoad::default(); self.nodes.len()];
         }
         let classes = &self.classes;
+        // each chunk's plastic states, or none (no plastic class: a zero one per link, never
+        // written, since only plastic links yield)
+        let chunks = self.nodes.len().div_ceil(CHUNK);
+        let plastic = if self.plastic.is_empty() {
+            Either::Left((0..chunks).into_par_iter().map(|_| None))
+        } else {
+            Either::Right(self.plastic.par_chunks_mut(CHUNK).map(Some))
+        };
         (
             self.nodes.par_chunks(CHUNK),
             self.class.par_chunks(CHUNK),
@@ -223,8 +248,11 @@ impl Links {
             self.loads.par_chunks_mut(CHUNK),
         )
             .into_par_iter()
-            .map(|(nodes, class, springs, state, loads)| {
+            .zip(plastic)
+            .map(|((nodes, class, springs, state, loads), mut plastic)| {
                 let mut sums = LinkUpdate::default();
+                // (shared by the chunk's links when no class is plastic: none writes it)
+                let mut zero = LinkPlastic::default();
                 for k in 0..nodes.len() {
                     let [a, b] = nodes[k].map(|n| n as usize);
                     let kin = LinkKinematics {
@@ -238,7 +266,11 @@ impl Links {
                         q2: p.ori[b],
                     };
                     let class = &classes[class[k] as usize];
-                    let f = update_link_parts(class, &springs[k], &mut state[k], &kin, dt);
+                    let pl = match plastic.as_deref_mut() {
+                        Some(pl) => &mut pl[k],
+                        None => &mut zero,
+                    };
+                    let f = update_link_parts(class, &springs[k], &mut state[k], pl, &kin, dt);
                     match f.event {
                         LinkEvent::BrokeInTension | LinkEvent::Separated => sums.events.broken += 1,
                         LinkEvent::LostCohesion => sums.events.decohered += 1,
@@ -317,8 +349,34 @@ mod tests {
             + size_of::<LinkLoad>();
         assert_eq!(
             (size_of::<LinkSpring>(), size_of::<LinkState>(), size_of::<LinkLoad>(), per_link),
-            (40, 120, 88, 260)
+            (40, 88, 88, 228)
         );
+    }
+
+    /// A plastic material's links keep a plastic state, and a link pulled past its tensile
+    /// limit keeps its plastic elongation there; a fragile material's links keep none.
+    #[test]
+    fn plastic_links_keep_their_plastic_state() {
+        assert!(Links::from_model(&chain_model(), LinkKinematicsMode::Beam).plastic.is_empty());
+        let mut model = Model::new();
+        let plastic = Material::new(1e7, 0.3, 1000.0, 0.5)
+            .unwrap()
+            .with_tensile_strength(Some(1e3))
+            .with_failure(FailureMode::Plastic);
+        let mat = model.add_material(plastic).unwrap();
+        let points = straight_line(Vec3::zeros(), Vec3::x(), 4).unwrap();
+        chain(&mut model, &points, &StructureOptions::new("c", 0.01, mat)).unwrap();
+        let mut links = Links::from_model(&model, LinkKinematicsMode::Beam);
+        assert_eq!(links.plastic.len(), links.len());
+        assert!(links.check_against(&model));
+        let last = model.particles.len() - 1;
+        model.particles.pos[last].x += 0.01;
+        links.update(&model.particles, 1e-5);
+        let elongation = links.plastic[links.len() - 1].elongation;
+        assert!(elongation > 0.0 && links.plastic[0].elongation == 0.0, "{elongation}");
+        let mut lost = links.clone();
+        lost.plastic.clear();
+        assert!(!lost.check_against(&model));
     }
 
     #[test]
@@ -334,7 +392,7 @@ mod tests {
     fn altered_links_do_not_fit() {
         let model = chain_model();
         let good = Links::from_model(&model, LinkKinematicsMode::Beam);
-        let alterations: [fn(&mut Links); 9] = [
+        let alterations: [fn(&mut Links); 10] = [
             |l| l.node_loads[3] = 1000,
             |l| l.node_loads.swap(0, 1),
             |l| l.node_offsets[2] = 99,
@@ -344,6 +402,7 @@ mod tests {
             |l| l.state.truncate(2),
             |l| l.class[2] = 1,
             |l| l.springs.truncate(1),
+            |l| l.plastic.push(LinkPlastic::default()),
         ];
         for (k, alter) in alterations.iter().enumerate() {
             let mut links = good.clone();

@@ -33,7 +33,9 @@
 //! q2⁰⁻¹·q1⁰ for the two reference orientations, its plastic rotation in node 1's body
 //! frame, and no per-link dissipation: the links' dissipation is summed in the energy);
 //! version 10 a contact state's lifetime dissipation as its friction alone
-//! (`FrictionalContact::dissipated_friction`, where it kept a whole `Dissipation`).
+//! (`FrictionalContact::dissipated_friction`, where it kept a whole `Dissipation`);
+//! version 11 the links' plastic states apart (`Links::plastic`, a `LinkPlastic` per link
+//! when some material is plastic, none otherwise; a link state without them).
 //! Files of older versions are refused with the version error, which says so.
 //!
 //! # Writing
@@ -75,7 +77,7 @@ use std::path::{Path, PathBuf};
 pub const CHECKPOINT_MAGIC: [u8; 8] = *b"FLXDMCKP";
 
 /// The format version this build writes and reads (see the module documentation).
-pub const CHECKPOINT_VERSION: u32 = 10;
+pub const CHECKPOINT_VERSION: u32 = 11;
 
 /// Size of the header before the payload: magic, version, length, checksum (bytes).
 pub const CHECKPOINT_HEADER_LEN: usize = 24;
