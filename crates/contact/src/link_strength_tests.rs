@@ -328,3 +328,23 @@ proptest! {
         prop_assert!(sim.work <= e + d + 1e-2 * e_max, "work {} > E {} + D {}", sim.work, e, d);
     }
 }
+
+proptest! {
+    /// A fragile link never writes its plastic part (the engine hands the fragile links of a
+    /// chunk one shared zero `LinkPlastic`): through stretching, shearing, bending and
+    /// twisting past its limits, to cohesion loss and breakage, it stays zero.
+    #[test]
+    fn a_fragile_link_never_yields(
+        moves in prop::collection::vec((vec3(2e-4), vec3(2e-2)), 1..40),
+    ) {
+        let m = mat()
+            .with_tensile_strength(Some(1e5))
+            .with_shear_strength(Some(1e4))
+            .with_failure(FailureMode::Fragile);
+        let mut sim = sim_with(m);
+        for (u, th) in moves {
+            move2(&mut sim, u, th);
+            prop_assert_eq!(sim.plastic, LinkPlastic::default());
+        }
+    }
+}

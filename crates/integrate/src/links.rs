@@ -164,8 +164,9 @@ impl Links {
 
     /// Whether these links (read from a checkpoint, say) fit `model`: one link per
     /// connection, on the connection's nodes, with as many classes (each in range), springs
-    /// and states (and plastic states when a class is plastic), and the node → loads index that [`Links::from_model`] builds for them
-    /// (every offset and load code in range). [`Links::update`] and [`Links::add_loads`] index the particles and the
+    /// and states (and plastic states when a class is plastic, none otherwise), and the
+    /// node → loads index that [`Links::from_model`] builds for them (every offset and load
+    /// code in range). [`Links::update`] and [`Links::add_loads`] index the particles and the
     /// forces with these numbers without further checks. `model` must have been validated
     /// (`Model::validate`: connection node ids in range).
     pub fn check_against(&self, model: &Model) -> bool {
@@ -232,8 +233,8 @@ impl Links {
             self.loads = vec![LinkLoad::default(); self.nodes.len()];
         }
         let classes = &self.classes;
-        // each chunk's plastic states, or none (no plastic class: a zero one per link, never
-        // written, since only plastic links yield)
+        // each chunk's plastic states, or none (no plastic class: one zero state for the
+        // chunk's links, never written, since only plastic links yield)
         let chunks = self.nodes.len().div_ceil(CHUNK);
         let plastic = if self.plastic.is_empty() {
             Either::Left((0..chunks).into_par_iter().map(|_| None))
