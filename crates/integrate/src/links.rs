@@ -46,10 +46,12 @@ pub struct LinkLoad {
     pub elastic_energy: Real,
 }
 
-/// Every beam link: constants, state, and the forces of the last step. Per link, 228 bytes:
-/// nodes 8, class 4, springs 40, state 88, loads 88 (and 16 of the node → loads index), and
-/// 32 of plastic state when some material is plastic; the constants links share (limits,
-/// radius, failure mode) are kept once per class.
+/// Every beam link: constants, state, and the forces of the last step. Per link, 192 bytes:
+/// nodes 8, class 4, spring 4, state 88, loads 88 (and 16 of the node → loads index), and 32
+/// of plastic state when some material is plastic; the constants links share (limits, radius,
+/// failure mode) are kept once per class, their stiffnesses and rest length once per distinct
+/// spring (a regular mesh has a few: 2 in the benchmark's membrane; an irregular one pays 40
+/// bytes per link in the table).
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct Links {
     /// The two nodes of link `i` (those of connection `i`).
@@ -59,8 +61,10 @@ pub struct Links {
     pub classes: Vec<LinkClass>,
     /// The class of link `i` (an index into `classes`).
     pub class: Vec<u32>,
-    /// The stiffnesses and rest length of link `i`.
+    /// The distinct stiffnesses and rest lengths (to the bit), once each.
     pub springs: Vec<LinkSpring>,
+    /// The spring of link `i` (an index into `springs`).
+    pub spring: Vec<u32>,
     /// State carried from step to step (shear force, reference rotation, status).
     pub state: Vec<LinkState>,
     /// The plastic part of link `i`'s state (plastic elongation and rotation), when some class
@@ -98,7 +102,8 @@ impl Links {
             nodes: Vec::with_capacity(n),
             classes: Vec::new(),
             class: Vec::with_capacity(n),
-            springs: Vec::with_capacity(n),
+            springs: Vec::new(),
+            spring: Vec::with_capacity(n),
             state: Vec::with_capacity(n),
             plastic: Vec::new(),
             loads: Vec::new(),
@@ -107,6 +112,7 @@ impl Links {
             chunk_sums: Vec::new(),
         };
         let mut class_of: HashMap<(u32, u64), u32> = HashMap::new();
+        let mut spring_of: HashMap<[u64; 5], u32> = HashMap::new();
         for c in &model.connections {
             let [a, b] = c.nodes.map(|n| n as usize);
             let material = &model.materials[c.material as usize];
@@ -116,7 +122,14 @@ impl Links {
             });
             links.nodes.push(c.nodes);
             links.class.push(class);
-            links.springs.push(LinkSpring::from_material(material, c.radius, c.rest_length));
+            let spring = LinkSpring::from_material(material, c.radius, c.rest_length);
+            let k = &spring.stiffness;
+            let bits = [k.kn, k.ks, k.kb, k.kt, spring.rest_length].map(Real::to_bits);
+            let index = *spring_of.entry(bits).or_insert_with(|| {
+                links.springs.push(spring);
+                (links.springs.len() - 1) as u32
+            });
+            links.spring.push(index);
             links.state.push(LinkState::new(p.pos[a], p.pos[b], p.ori[a], p.ori[b]));
         }
         if links.some_plastic() {
@@ -178,9 +191,11 @@ impl Links {
         let classes_in_range = self.class.len() == n_links
             && self.class.iter().all(|&c| (c as usize) < self.classes.len());
         let plastic_states = if self.some_plastic() { n_links } else { 0 };
+        let springs_in_range = self.spring.len() == n_links
+            && self.spring.iter().all(|&s| (s as usize) < self.springs.len());
         if !(same_nodes
             && classes_in_range
-            && self.springs.len() == n_links
+            && springs_in_range
             && self.state.len() == n_links
             && self.plastic.len() == plastic_states)
         {
@@ -191,6 +206,7 @@ impl Links {
             classes: Vec::new(),
             class: Vec::new(),
             springs: Vec::new(),
+            spring: Vec::new(),
             state: Vec::new(),
             plastic: Vec::new(),
             loads: Vec::new(),
@@ -208,6 +224,11 @@ impl Links {
         let empty_after =
             self.node_offsets.len() <= n_particles + 1 && after.iter().all(|&o| o == total);
         kept == fresh.node_offsets && empty_after && fresh.node_loads == self.node_loads
+    }
+
+    /// The stiffnesses and rest length of link `k`.
+    pub fn spring_of(&self, k: usize) -> &LinkSpring {
+        &self.springs[self.spring[k] as usize]
     }
 
     /// Number of links.
@@ -232,7 +253,7 @@ impl Links {
         if self.loads.len() != self.nodes.len() {
             self.loads = vec![LinkLoad::default(); self.nodes.len()];
         }
-        let classes = &self.classes;
+        let (classes, springs) = (&self.classes, &self.springs);
         // each chunk's plastic states, or none (no plastic class: one zero state for the
         // chunk's links, never written, since only plastic links yield)
         let chunks = self.nodes.len().div_ceil(CHUNK);
@@ -244,13 +265,13 @@ impl Links {
         (
             self.nodes.par_chunks(CHUNK),
             self.class.par_chunks(CHUNK),
-            self.springs.par_chunks(CHUNK),
+            self.spring.par_chunks(CHUNK),
             self.state.par_chunks_mut(CHUNK),
             self.loads.par_chunks_mut(CHUNK),
         )
             .into_par_iter()
             .zip(plastic)
-            .map(|((nodes, class, springs, state, loads), mut plastic)| {
+            .map(|((nodes, class, spring, state, loads), mut plastic)| {
                 let mut sums = LinkUpdate::default();
                 // (shared by the chunk's links when no class is plastic: none writes it)
                 let mut zero = LinkPlastic::default();
@@ -271,7 +292,8 @@ impl Links {
                         Some(pl) => &mut pl[k],
                         None => &mut zero,
                     };
-                    let f = update_link_parts(class, &springs[k], &mut state[k], pl, &kin, dt);
+                    let sp = &springs[spring[k] as usize];
+                    let f = update_link_parts(class, sp, &mut state[k], pl, &kin, dt);
                     match f.event {
                         LinkEvent::BrokeInTension | LinkEvent::Separated => sums.events.broken += 1,
                         LinkEvent::LostCohesion => sums.events.decohered += 1,
@@ -343,15 +365,32 @@ mod tests {
     #[test]
     fn a_link_holds_the_bytes_documented() {
         use std::mem::size_of;
+        // nodes, class, spring, state, loads
         let per_link = size_of::<[u32; 2]>()
-            + size_of::<u32>()
-            + size_of::<LinkSpring>()
+            + 2 * size_of::<u32>()
             + size_of::<LinkState>()
             + size_of::<LinkLoad>();
         assert_eq!(
             (size_of::<LinkSpring>(), size_of::<LinkState>(), size_of::<LinkLoad>(), per_link),
-            (40, 88, 88, 228)
+            (40, 88, 88, 192)
         );
+    }
+
+    /// Links with the same stiffnesses and rest length share one spring: a chain of equal
+    /// segments has one, and each link still reads its own constants.
+    #[test]
+    fn equal_links_share_a_spring() {
+        let model = chain_model();
+        let links = Links::from_model(&model, LinkKinematicsMode::Beam);
+        let material = &model.materials[0];
+        for (k, c) in model.connections.iter().enumerate() {
+            let own = LinkSpring::from_material(material, c.radius, c.rest_length);
+            assert_eq!(*links.spring_of(k), own);
+        }
+        let distinct: std::collections::HashSet<u64> =
+            model.connections.iter().map(|c| c.rest_length.to_bits()).collect();
+        assert_eq!(links.springs.len(), distinct.len());
+        assert!(links.springs.len() < links.len());
     }
 
     /// A plastic material's links keep a plastic state, and a link pulled past its tensile
@@ -393,7 +432,7 @@ mod tests {
     fn altered_links_do_not_fit() {
         let model = chain_model();
         let good = Links::from_model(&model, LinkKinematicsMode::Beam);
-        let alterations: [fn(&mut Links); 10] = [
+        let alterations: [fn(&mut Links); 11] = [
             |l| l.node_loads[3] = 1000,
             |l| l.node_loads.swap(0, 1),
             |l| l.node_offsets[2] = 99,
@@ -402,7 +441,8 @@ mod tests {
             |l| l.nodes[0] = [0, 77],
             |l| l.state.truncate(2),
             |l| l.class[2] = 1,
-            |l| l.springs.truncate(1),
+            |l| l.spring.truncate(1),
+            |l| l.spring[0] = 7,
             |l| l.plastic.push(LinkPlastic::default()),
         ];
         for (k, alter) in alterations.iter().enumerate() {

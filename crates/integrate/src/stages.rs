@@ -50,7 +50,7 @@ impl Simulation {
             let d = p.pos[b] - p.pos[a];
             let len = d.norm();
             let n = if len > 0.0 { d / len } else { Vec3::x() };
-            let s = &self.state.links.springs[l].stiffness;
+            let s = &self.state.links.spring_of(l).stiffness;
             for i in [a, b] {
                 k.add(i, &n, s.kn, s.ks, 0.5 * len, s.kt, s.kb);
             }

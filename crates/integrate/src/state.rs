@@ -117,7 +117,7 @@ impl State {
         let n_links = self.model.connections.len();
         let (links, k, c) = (&self.links, &self.clock.stiffness, &self.clock);
         links.len() == n_links
-            && links.springs.len() == n_links
+            && links.spring.len() == n_links
             && links.class.len() == n_links
             && links.state.len() == n_links
             && links.check_against(&self.model)

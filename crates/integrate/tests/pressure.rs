@@ -203,8 +203,11 @@ fn energy_balance_closes_for_a_ringing_pressurised_shell() {
 ///   R·A is 3V₀ (the faces are at distance 3V₀/A < R from the centre), and the pressure acts
 ///   on the stretched area: virtual work over a dilation, 3pV₀(1 + ε)² = ε·Σ kₙL₀².
 fn uniform_dilation_strain(sim: &Simulation, p: Real, v0: Real) -> Real {
-    let k_l2: Real =
-        sim.links().springs.iter().map(|l| l.stiffness.kn * l.rest_length * l.rest_length).sum();
+    let links = sim.links();
+    let k_l2: Real = (0..links.len())
+        .map(|k| links.spring_of(k))
+        .map(|l| l.stiffness.kn * l.rest_length * l.rest_length)
+        .sum();
     let mut eps: Real = 0.0;
     for _ in 0..50 {
         eps = 3.0 * p * v0 * (1.0 + eps).powi(2) / k_l2;
@@ -224,8 +227,9 @@ fn damped_shell_comes_to_rest_at_the_membrane_theory_radius() {
     let v0 = volume(&sim);
     let theory = uniform_dilation_strain(&sim, p, v0);
     // the equilateral-lattice formula at the mean link length, for the record
-    let links = &sim.links().springs;
-    let mean_length = links.iter().map(|l| l.rest_length).sum::<Real>() / links.len() as Real;
+    let links = sim.links();
+    let mean_length = (0..links.len()).map(|k| links.spring_of(k).rest_length).sum::<Real>()
+        / links.len() as Real;
     let ea = YOUNG * PI * NODE_RADIUS * NODE_RADIUS;
     let et = 2.0 * ea / (3.0_f64.sqrt() * mean_length);
     let continuum = p * R * (1.0 - 1.0 / 3.0) / (2.0 * et);

@@ -399,7 +399,7 @@ fn foreign_and_odd_files_give_their_error() {
     // 7: the `State` before a structure's self-contact switch;
     // 8: the `State` before the lean links (classes, springs, one rest rotation);
     // 9: the `State` before a contact state's lone friction total;
-    // 10: the `State` before the links' plastic states apart from their states
+    // 10: the `State` before the links' plastic states apart and their springs shared
     let older = [
         (CHECKPOINT_VERSION + 1, "newer"),
         (0, "older"),

@@ -35,7 +35,8 @@
 //! version 10 a contact state's lifetime dissipation as its friction alone
 //! (`FrictionalContact::dissipated_friction`, where it kept a whole `Dissipation`);
 //! version 11 the links' plastic states apart (`Links::plastic`, a `LinkPlastic` per link
-//! when some material is plastic, none otherwise; a link state without them).
+//! when some material is plastic, none otherwise; a link state without them) and their
+//! springs shared (`Links::springs` once per distinct spring, `Links::spring` per link).
 //! Files of older versions are refused with the version error, which says so.
 //!
 //! # Writing
