@@ -254,8 +254,10 @@ impl Links {
             self.loads = vec![LinkLoad::default(); self.nodes.len()];
         }
         let (classes, springs) = (&self.classes, &self.springs);
-        // each chunk's plastic states, or none (no plastic class: one zero state for the
-        // chunk's links, never written, since only plastic links yield)
+        // each chunk's plastic states, or none (no plastic class: see `zero` below); a
+        // plastic vector of another length (which `check_against` refuses) would leave links
+        // out of the zip
+        debug_assert!(self.plastic.is_empty() || self.plastic.len() == self.nodes.len());
         let chunks = self.nodes.len().div_ceil(CHUNK);
         let plastic = if self.plastic.is_empty() {
             Either::Left((0..chunks).into_par_iter().map(|_| None))
@@ -273,7 +275,8 @@ impl Links {
             .zip(plastic)
             .map(|((nodes, class, spring, state, loads), mut plastic)| {
                 let mut sums = LinkUpdate::default();
-                // (shared by the chunk's links when no class is plastic: none writes it)
+                // one zero plastic state for the chunk's links when no class is plastic: a
+                // fragile link never writes it (`a_fragile_link_never_yields`)
                 let mut zero = LinkPlastic::default();
                 for k in 0..nodes.len() {
                     let [a, b] = nodes[k].map(|n| n as usize);
