@@ -40,6 +40,7 @@
 
 use crate::pairs::Candidate;
 use crate::virtual_sphere::Feature;
+use crate::{Connection, Model, PFacet};
 use flexdem_geom::Real;
 
 /// An element that produces candidates: the collider's unit.
@@ -54,18 +55,22 @@ pub enum Element {
 }
 
 /// The connectivity needed to decide which features an element contains: the nodes of each
-/// connection and the nodes and connections of each PFacet.
+/// connection and the nodes and connections of each PFacet (`[0]` joins nodes 0–1, `[1]`
+/// 1–2, `[2]` 2–0), read from the model's own lists (no copy).
 #[derive(Clone, Copy, Debug)]
 pub struct Topology<'a> {
-    /// Nodes of connection `i`.
-    pub connection_nodes: &'a [[u32; 2]],
-    /// Nodes of PFacet `i`.
-    pub pfacet_nodes: &'a [[u32; 3]],
-    /// Connections of PFacet `i` (`[0]` joins nodes 0–1, `[1]` 1–2, `[2]` 2–0).
-    pub pfacet_connections: &'a [[u32; 3]],
+    /// The connections (their `nodes`).
+    pub connections: &'a [Connection],
+    /// The PFacets (their `nodes` and `connections`).
+    pub pfacets: &'a [PFacet],
 }
 
-impl Topology<'_> {
+impl<'a> Topology<'a> {
+    /// The topology of `model`.
+    pub fn of(model: &'a Model) -> Self {
+        Topology { connections: &model.connections, pfacets: &model.pfacets }
+    }
+
     /// Whether `element` contains `feature` (its own skeleton, an end node of a connection,
     /// a node or edge of a PFacet).
     pub fn element_contains(&self, element: Element, feature: Feature) -> bool {
@@ -73,14 +78,14 @@ impl Topology<'_> {
             (Element::Particle(p), Feature::Particle(q)) => p == q,
             (Element::Connection(c), Feature::Edge(e)) => c == e,
             (Element::Connection(c), Feature::Particle(n)) => {
-                self.connection_nodes[c as usize].contains(&n)
+                self.connections[c as usize].nodes.contains(&n)
             }
             (Element::PFacet(f), Feature::Face(g)) => f == g,
             (Element::PFacet(f), Feature::Edge(e)) => {
-                self.pfacet_connections[f as usize].contains(&e)
+                self.pfacets[f as usize].connections.contains(&e)
             }
             (Element::PFacet(f), Feature::Particle(n)) => {
-                self.pfacet_nodes[f as usize].contains(&n)
+                self.pfacets[f as usize].nodes.contains(&n)
             }
             _ => false,
         }

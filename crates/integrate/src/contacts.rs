@@ -49,9 +49,6 @@ pub(crate) struct ContactPipeline {
     load_nodes: Vec<[u32; 6]>,
     /// Where each particle's loads are, for their parallel sum (`gather.rs`).
     load_index: LoadIndex,
-    connection_nodes: Vec<[u32; 2]>,
-    pfacet_nodes: Vec<[u32; 3]>,
-    pfacet_connections: Vec<[u32; 3]>,
 }
 
 /// Candidate pairs per parallel task of the detection (fixed, the order of the touchings does
@@ -205,9 +202,6 @@ impl ContactPipeline {
             damped: model.materials.iter().any(|m| m.damping != ContactDamping::None)
                 || contacts.list.iter().any(|c| c.params.is_damped())
                 || contacts.pairs.touching().any(|(_, c)| c.params.is_damped()),
-            connection_nodes: model.connections.iter().map(|c| c.nodes).collect(),
-            pfacet_nodes: model.pfacets.iter().map(|f| f.nodes).collect(),
-            pfacet_connections: model.pfacets.iter().map(|f| f.connections).collect(),
             ..Default::default()
         }
     }
@@ -283,11 +277,7 @@ impl ContactPipeline {
         }
 
         // 2. one contact per touching: drop the dominated candidates (indexed lookups)
-        let topology = Topology {
-            connection_nodes: &self.connection_nodes,
-            pfacet_nodes: &self.pfacet_nodes,
-            pfacet_connections: &self.pfacet_connections,
-        };
+        let topology = Topology::of(model);
         let touching = &self.touching;
         let index_of = |e: Element| -> u32 {
             match e {

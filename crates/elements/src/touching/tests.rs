@@ -4,6 +4,7 @@
 use super::*;
 use crate::pairs::*;
 use crate::virtual_sphere::{distribute_force, Feature, Site};
+use crate::{Connection, PFacet};
 use flexdem_geom::Vec3;
 
 /// A small mesh: node positions, connections, PFacets and their radius. [`Fan::new`] makes a
@@ -15,6 +16,9 @@ struct Fan {
     pf_nodes: Vec<[u32; 3]>,
     pf_conns: Vec<[u32; 3]>,
     radius: f64,
+    /// The same lists as a model's connections and PFacets (what [`Topology`] reads).
+    connections: Vec<Connection>,
+    pfacets: Vec<PFacet>,
 }
 
 impl Fan {
@@ -30,15 +34,45 @@ impl Fan {
         let pf_nodes = (0..k).map(|i| [0, ring(i), ring(i + 1)]).collect();
         // connections: [0] joins nodes 0-1 (spoke i), [1] joins 1-2 (rim i), [2] joins 2-0 (spoke i+1)
         let pf_conns = (0..k).map(|i| [i, k + i, (i + 1) % k]).collect();
-        Fan { pos, conn_nodes, pf_nodes, pf_conns, radius }
+        Fan::from_lists(pos, conn_nodes, pf_nodes, pf_conns, radius)
+    }
+
+    /// A mesh of these nodes, connections and PFacets (one material, structure 0).
+    fn from_lists(
+        pos: Vec<Vec3>,
+        conn_nodes: Vec<[u32; 2]>,
+        pf_nodes: Vec<[u32; 3]>,
+        pf_conns: Vec<[u32; 3]>,
+        radius: f64,
+    ) -> Self {
+        let connections = conn_nodes
+            .iter()
+            .map(|&nodes| Connection {
+                nodes,
+                radius,
+                material: 0,
+                mask: 1,
+                structure: 0,
+                rest_length: 1.0,
+            })
+            .collect();
+        let pfacets = pf_nodes
+            .iter()
+            .zip(&pf_conns)
+            .map(|(&nodes, &connections)| PFacet {
+                nodes,
+                connections,
+                radius,
+                material: 0,
+                mask: 1,
+                structure: 0,
+            })
+            .collect();
+        Fan { pos, conn_nodes, pf_nodes, pf_conns, radius, connections, pfacets }
     }
 
     fn topology(&self) -> Topology<'_> {
-        Topology {
-            connection_nodes: &self.conn_nodes,
-            pfacet_nodes: &self.pf_nodes,
-            pfacet_connections: &self.pf_conns,
-        }
+        Topology { connections: &self.connections, pfacets: &self.pfacets }
     }
 
     fn pfacet(&self, f: usize) -> PFacetRef {
@@ -179,13 +213,13 @@ fn concave_valley_gives_one_contact_per_face() {
         Vec3::new(0.0, 1.0, 1.0),
         Vec3::new(0.0, -1.0, 1.0),
     ];
-    let mesh = Fan {
-        pos: pos.to_vec(),
-        conn_nodes: vec![[0, 1], [1, 2], [2, 0], [1, 3], [3, 0]],
-        pf_nodes: vec![[0, 1, 2], [1, 0, 3]],
-        pf_conns: vec![[0, 1, 2], [0, 4, 3]],
-        radius: 0.01,
-    };
+    let mesh = Fan::from_lists(
+        pos.to_vec(),
+        vec![[0, 1], [1, 2], [2, 0], [1, 3], [3, 0]],
+        vec![[0, 1, 2], [1, 0, 3]],
+        vec![[0, 1, 2], [0, 4, 3]],
+        0.01,
+    );
     let topo = mesh.topology();
     let pf = |f: usize| mesh.pfacet(f);
     // the walls are at 45 degrees: a sphere on the axis at height z touches both at z/sqrt(2)
@@ -227,13 +261,13 @@ fn folds_pressed_together_at_two_places_get_a_contact_at_each() {
         Vec3::new(1.0, -0.1, 1.6 * r),
         Vec3::new(1.0, 0.1, 1.5 * r),
     ];
-    let mesh = Fan {
-        pos: pos.to_vec(),
-        conn_nodes: vec![[0, 1], [1, 2], [2, 0], [3, 4], [4, 5], [5, 3], [3, 6], [6, 7], [7, 3]],
-        pf_nodes: vec![[0, 1, 2], [3, 4, 5], [3, 6, 7]],
-        pf_conns: vec![[0, 1, 2], [3, 4, 5], [6, 7, 8]],
-        radius: r,
-    };
+    let mesh = Fan::from_lists(
+        pos.to_vec(),
+        vec![[0, 1], [1, 2], [2, 0], [3, 4], [4, 5], [5, 3], [3, 6], [6, 7], [7, 3]],
+        vec![[0, 1, 2], [3, 4, 5], [3, 6, 7]],
+        vec![[0, 1, 2], [3, 4, 5], [6, 7, 8]],
+        r,
+    );
     let topo = mesh.topology();
     let pf = |f: usize| mesh.pfacet(f);
     let c: Vec<_> = [1, 2]
