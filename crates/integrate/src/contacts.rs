@@ -18,6 +18,7 @@ use crate::offsets::continued_overlap;
 use crate::pair_passes::PairScratch;
 use crate::parallel::{MIN_PARALLEL_CHEAP, MIN_PARALLEL_COSTLY};
 use crate::prefilter::{proven_apart, write_hull, Hull};
+use crate::touchings::Touchings;
 use flexdem_contact::{update_frictional_contact, ContactDamping};
 use flexdem_elements::pairs::{self, Candidate, ConnectionRef, PFacetRef, SphereRef};
 use flexdem_elements::touching::{dominates, Element, ElementCandidate, Topology};
@@ -34,7 +35,6 @@ pub(crate) struct ContactPipeline {
     pub(crate) fresh: Vec<usize>,
     /// Buffers of the neighbour list's update (its fresh pairs among them).
     pub(crate) pairs: PairScratch,
-    touching: Vec<ElementCandidate>,
     loads: Vec<[NodeLoad; 6]>,
     /// Whether a contact may have a dashpot (a material has damping, or a contact kept from
     /// before has a dashpot): then `dashpot_loads` (and the neighbour list's) are kept.
@@ -60,12 +60,15 @@ const DETECT_CHUNK: usize = 1024;
 struct Scratch {
     order: Vec<(Feature, Feature, u32)>,
     hulls: Vec<Hull>,
-    /// Per chunk of [`DETECT_CHUNK`] candidate pairs, its touching ones at the last detection.
+    /// Per chunk of [`DETECT_CHUNK`] candidate pairs, its touching ones at the last detection
+    /// (read through [`Touchings`], not copied into one list).
     found: Vec<Vec<ElementCandidate>>,
+    /// Where each chunk's touchings start in pair order, then their end ([`Touchings`]).
+    starts: Vec<u32>,
     keys: Vec<(u32, u32)>,
-    /// Per touching, whether it survived the one-contact rule (its oriented `Touching` is
-    /// made from `touching` where it is read: 1 byte here instead of a copy).
-    survived: Vec<bool>,
+    /// Per chunk, per touching, whether it survived the one-contact rule (its oriented
+    /// `Touching` is made from the touching where it is read: 1 byte here instead of a copy).
+    survived: Vec<Vec<bool>>,
     /// The walls' touchings (they come after the touchings in the key order's indices).
     walls: Vec<Touching>,
     previous: Vec<Contact>,
@@ -271,14 +274,18 @@ impl ContactPipeline {
                     }
                 }
             });
-        self.touching.clear();
-        for found in &self.scratch.found[..chunks] {
-            self.touching.extend_from_slice(found);
+        let scratch = &mut self.scratch;
+        scratch.starts.clear();
+        scratch.starts.push(0);
+        let mut end = 0;
+        for found in &scratch.found[..chunks] {
+            end += found.len() as u32;
+            scratch.starts.push(end);
         }
+        let touching = Touchings { chunks: &scratch.found[..chunks], starts: &scratch.starts };
 
         // 2. one contact per touching: drop the dominated candidates (indexed lookups)
         let topology = Topology::of(model);
-        let touching = &self.touching;
         let index_of = |e: Element| -> u32 {
             match e {
                 Element::Particle(i) => collider.sphere_element[i as usize],
@@ -286,49 +293,64 @@ impl ContactPipeline {
                 Element::PFacet(k) => collider.pfacet_element[k as usize],
             }
         };
-        let scratch = &mut self.scratch;
-        scratch.keys.clear();
-        scratch.keys.extend(touching.iter().map(|c| (index_of(c.element1), index_of(c.element2))));
-        let keys = &scratch.keys;
-        (0..touching.len())
-            .into_par_iter()
-            .with_min_len(MIN_PARALLEL_COSTLY)
-            .map(|i| {
-                let ci = &touching[i];
-                let side2 = containing(collider, adj, ci.candidate.site2.feature);
-                for e1 in containing(collider, adj, ci.candidate.site1.feature) {
-                    for e2 in side2.clone() {
-                        let key = (e1.min(e2), e1.max(e2));
-                        if let Ok(j) = keys.binary_search(&key) {
-                            if dominates(&touching[j], j, ci, i, &topology) {
-                                return false;
-                            }
+        let keys = &mut scratch.keys;
+        keys.clear();
+        keys.extend(touching.iter().map(|c| (index_of(c.element1), index_of(c.element2))));
+        let keys = &*keys;
+        let survives = |i: usize, ci: &ElementCandidate| {
+            let side2 = containing(collider, adj, ci.candidate.site2.feature);
+            for e1 in containing(collider, adj, ci.candidate.site1.feature) {
+                for e2 in side2.clone() {
+                    let key = (e1.min(e2), e1.max(e2));
+                    if let Ok(j) = keys.binary_search(&key) {
+                        if dominates(&touching[j], j, ci, i, &topology) {
+                            return false;
                         }
                     }
                 }
-                true
-            })
-            .collect_into_vec(&mut scratch.survived);
+            }
+            true
+        };
+        if scratch.survived.len() < chunks {
+            scratch.survived.resize_with(chunks, Vec::new);
+        }
+        // per chunk, in parallel (each touching's index from its chunk's start)
+        touching
+            .chunks
+            .par_iter()
+            .zip(touching.starts.par_iter())
+            .zip(scratch.survived[..chunks].par_iter_mut())
+            .for_each(|((found, &start), survived)| {
+                survived.clear();
+                survived.extend(
+                    found.iter().enumerate().map(|(l, ci)| survives(start as usize + l, ci)),
+                );
+            });
 
         // walls touch every particle on their side (one contact per wall and particle)
         let walls = &mut scratch.walls;
         walls.clear();
         walls.extend(collider.wall_pairs.iter().filter_map(|&(w, i)| wall_touching(model, w, i)));
-        // sorted by key through a small (key, index) list: the touchings themselves are large
-        // and moving them in the sort cost more than the sort's comparisons. Index n < S
-        // (S touchings) is touching n (if it survived), S + m wall touching m: as if both were
-        // in one list (the dominated ones left out and no copy)
-        let touching = &self.touching;
-        let survived = &scratch.survived;
-        let first_wall = touching.len() as u32;
+        // sorted by key through a small (key, code) list: the touchings themselves are large
+        // and moving them in the sort cost more than the sort's comparisons. Code
+        // c·DETECT_CHUNK + l is touching l of chunk c (if it survived; increasing in pair
+        // order), W + m wall touching m, W = chunks·DETECT_CHUNK: as if both were in one list
+        // (the dominated ones left out and no copy)
+        let first_wall = (chunks * DETECT_CHUNK) as u32;
         let order = &mut scratch.order;
         order.clear();
         let key = |t: &Touching, n: u32| (t.candidate.site1.feature, t.candidate.site2.feature, n);
-        order.extend(
-            (0..touching.len())
-                .filter(|&n| survived[n])
-                .map(|n| key(&surviving(model, &touching[n]), n as u32)),
-        );
+        for (c, (found, survived)) in touching.chunks.iter().zip(&scratch.survived).enumerate() {
+            let code = |l: usize| (c * DETECT_CHUNK + l) as u32;
+            order.extend(
+                found
+                    .iter()
+                    .zip(survived)
+                    .enumerate()
+                    .filter(|(_, (_, &survived))| survived)
+                    .map(|(l, (t, _))| key(&surviving(model, t), code(l))),
+            );
+        }
         order.extend(walls.iter().enumerate().map(|(m, t)| key(t, first_wall + m as u32)));
         order.par_sort_unstable();
 
@@ -348,9 +370,12 @@ impl ContactPipeline {
             matched.push((k < old.len() && old[k].key() == (f1, f2)).then_some(k as u32));
         }
         let walls = &scratch.walls;
-        let touching_at = |n: u32| match touching.get(n as usize) {
-            Some(t) => surviving(model, t),
-            None => walls[n as usize - touching.len()],
+        let touching_at = |n: u32| match n.checked_sub(first_wall) {
+            Some(m) => walls[m as usize],
+            None => {
+                let (c, l) = (n as usize / DETECT_CHUNK, n as usize % DETECT_CHUNK);
+                surviving(model, &touching.chunks[c][l])
+            }
         };
         order
             .par_iter()

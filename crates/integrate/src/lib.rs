@@ -33,6 +33,7 @@ mod stages;
 mod state;
 mod time_step;
 mod timers;
+mod touchings;
 
 pub use broad_phase::BroadPhase;
 pub use collider::Collider;
