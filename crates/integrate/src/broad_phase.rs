@@ -150,7 +150,9 @@ struct Cells<'a> {
 impl Cells<'_> {
     /// Calls `found(i, j)`, `i < j`, for each pair of boxes that share one of the cells
     /// `cells` (indices into `starts`), intersect and that `accept` accepts, reported only by
-    /// the cell that holds the minimum corner of their intersection (so once).
+    /// the cell that holds the minimum corner of their intersection (so once). Each cell's
+    /// boxes are asked for once (`box_of` may make them from the elements' nodes) and kept
+    /// while its pairs are tested.
     fn pairs<B, F>(
         &self,
         cells: std::ops::Range<usize>,
@@ -162,15 +164,17 @@ impl Cells<'_> {
         F: Fn(u32, u32) -> bool,
     {
         let Cells { entries, starts, packing, origin, inv_h } = self;
+        let mut cell: Vec<(u32, Aabb)> = Vec::new();
         for b in cells {
             let (s, e) = (starts[b], starts[b + 1]);
             let key = packing.key_of(entries[s]);
-            for a in s..e {
-                let i = packing.index_of(entries[a]);
-                let bi = box_of(i);
-                for &other in &entries[a + 1..e] {
-                    let j = packing.index_of(other);
-                    let bj = box_of(j);
+            cell.clear();
+            cell.extend(entries[s..e].iter().map(|&entry| {
+                let i = packing.index_of(entry);
+                (i, box_of(i))
+            }));
+            for (a, &(i, bi)) in cell.iter().enumerate() {
+                for &(j, bj) in &cell[a + 1..] {
                     if !bi.intersects(&bj) {
                         continue;
                     }

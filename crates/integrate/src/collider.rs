@@ -13,14 +13,15 @@
 //! than m_a (every particle's limit is the smallest margin of the elements holding it), and a
 //! hull's points are convex combinations of its nodes, so the pair cannot have closed the gap.
 //!
-//! Memory: the boxes, margins and cell entries (at most 64 per element, 8 at most for a
-//! typical box) are linear in the elements; the candidate pairs are as many as the pairs of
-//! overlapping boxes, linear at bounded density but not when a structure overlaps itself: a
-//! chain of 10⁶ segments 1 µm long and 1 cm thick (a mutated `segments` of the cantilever)
-//! has each connection's box over 20 000 others', 2·10¹⁰ pairs, and the pair list asked for
-//! 16 GiB. No box test can drop those pairs without dropping real contacts; such a structure
-//! cannot run anyway (its elements would push each other apart from the first step), so the
-//! scene reader refuses it at once with `flexdem_elements::self_overlap`.
+//! Memory: the margins and cell entries (at most 64 per element, 8 at most for a typical
+//! box) are linear in the elements (the boxes are made from the nodes when the broad phase
+//! asks, once per cell a box is in, and not kept); the candidate pairs are as many as the
+//! pairs of overlapping boxes, linear at bounded density but not when a structure overlaps
+//! itself: a chain of 10⁶ segments 1 µm long and 1 cm thick (a mutated `segments` of the
+//! cantilever) has each connection's box over 20 000 others', 2·10¹⁰ pairs, and the pair
+//! list asked for 16 GiB. No box test can drop those pairs without dropping real contacts;
+//! such a structure cannot run anyway (its elements would push each other apart from the
+//! first step), so the scene reader refuses it at once with `flexdem_elements::self_overlap`.
 //!
 //! Collidable elements are the free spheres, the connections that belong to no PFacet, and
 //! the PFacets (a PFacet's edges and nodes are part of it). Nodes are touched only through
@@ -32,7 +33,7 @@ use crate::parallel::MIN_PARALLEL_CHEAP;
 use crate::prefilter::hull;
 use flexdem_elements::touching::Element;
 use flexdem_elements::{Model, ParticleKind};
-use flexdem_geom::{aabb_sphere, aabb_swept_segment, aabb_swept_triangle, Aabb, Real, Vec3};
+use flexdem_geom::{aabb_sphere, aabb_swept_segment, aabb_swept_triangle, Real, Vec3};
 use rayon::prelude::*;
 
 /// Size of an element: the radius of a sphere holding it in its current configuration.
@@ -87,9 +88,6 @@ pub struct Collider {
     reference: Vec<Vec3>,
     /// Wall points at the last build.
     wall_reference: Vec<Vec3>,
-    /// Boxes of the elements after the free spheres, at the last build (a free sphere's box,
-    /// centre ± radius and margin, is made when asked for: 48 bytes a sphere not held).
-    boxes: Vec<Aabb>,
     broad: BroadPhase,
     /// Number of builds so far.
     pub builds: u64,
@@ -211,31 +209,6 @@ impl Collider {
     /// not two parts of a structure whose self-contact is off.
     pub fn rebuild(&mut self, model: &Model) {
         let p = &model.particles;
-        // the structures' elements' boxes; the free spheres' (first among the elements) are
-        // made when the broad phase asks
-        let spheres = self.elements.partition_point(|e| matches!(e, Element::Particle(_)));
-        self.boxes.clear();
-        self.boxes.extend(self.elements[spheres..].iter().zip(&self.margins[spheres..]).map(
-            |(&e, &margin)| {
-                let b = match e {
-                    Element::Particle(i) => aabb_sphere(&p.pos[i as usize], p.radius[i as usize]),
-                    Element::Connection(k) => {
-                        let c = &model.connections[k as usize];
-                        aabb_swept_segment(
-                            &p.pos[c.nodes[0] as usize],
-                            &p.pos[c.nodes[1] as usize],
-                            c.radius,
-                        )
-                    }
-                    Element::PFacet(k) => {
-                        let f = &model.pfacets[k as usize];
-                        let [a, b, d] = f.nodes.map(|n| p.pos[n as usize]);
-                        aabb_swept_triangle(&a, &b, &d, f.radius)
-                    }
-                };
-                b.loosened(margin)
-            },
-        ));
         let (elements, margins) = (&self.elements, &self.margins);
         let accept = |i: u32, j: u32| {
             let (a, b) = (elements[i as usize], elements[j as usize]);
@@ -258,14 +231,27 @@ impl Collider {
                 (Element::Particle(_), Element::Particle(_))
             )
         };
-        let (boxes, count) = (&self.boxes, elements.len());
+        // each box made when the broad phase asks, from the nodes (none stored: 48 bytes an
+        // element; the builds are a few per cent of the step)
+        let count = elements.len();
         let box_of = |i: u32| {
-            let i = i as usize;
-            if i >= spheres {
-                return boxes[i - spheres];
-            }
-            let Element::Particle(s) = elements[i] else { unreachable!("free spheres first") };
-            aabb_sphere(&p.pos[s as usize], p.radius[s as usize]).loosened(margins[i])
+            let b = match elements[i as usize] {
+                Element::Particle(s) => aabb_sphere(&p.pos[s as usize], p.radius[s as usize]),
+                Element::Connection(k) => {
+                    let c = &model.connections[k as usize];
+                    aabb_swept_segment(
+                        &p.pos[c.nodes[0] as usize],
+                        &p.pos[c.nodes[1] as usize],
+                        c.radius,
+                    )
+                }
+                Element::PFacet(k) => {
+                    let f = &model.pfacets[k as usize];
+                    let [a, b, d] = f.nodes.map(|n| p.pos[n as usize]);
+                    aabb_swept_triangle(&a, &b, &d, f.radius)
+                }
+            };
+            b.loosened(margins[i as usize])
         };
         let (sphere_pairs, pairs) = (&mut self.sphere_pairs, &mut self.pairs);
         self.broad.overlapping_pairs_split(count, box_of, accept, two_spheres, sphere_pairs, pairs);
