@@ -86,12 +86,36 @@ impl Model {
     /// The model's adjacency (built in O(particles + connections + PFacets)). Meant for a
     /// validated model: references out of range are skipped.
     pub fn adjacency(&self) -> Adjacency {
+        self.adjacency_where(|_| true)
+    }
+
+    /// The adjacency that contact detection reads: [`Model::adjacency`] with only the
+    /// connections that are edges of no PFacet in the node → connections rows (a PFacet's
+    /// edges are touched through the PFacet, never as elements of their own), so that a
+    /// membrane's nodes have none (4 bytes per connection end less).
+    pub fn contact_adjacency(&self) -> Adjacency {
+        let mut in_pfacet = vec![false; self.connections.len()];
+        for c in self.pfacets.iter().flat_map(|f| f.connections) {
+            if let Some(flag) = in_pfacet.get_mut(c as usize) {
+                *flag = true;
+            }
+        }
+        self.adjacency_where(|c| !in_pfacet[c])
+    }
+
+    /// The adjacency with the connections `c` where `listed(c)` in the node → connections
+    /// rows.
+    fn adjacency_where(&self, listed: impl Fn(usize) -> bool) -> Adjacency {
         let n = self.particles.len();
         let conns = &self.connections;
         let facets = &self.pfacets;
         let node_connections = Csr::from_pairs(
             n,
-            conns.iter().enumerate().flat_map(|(c, k)| k.nodes.map(|node| (node, c as u32))),
+            conns
+                .iter()
+                .enumerate()
+                .filter(|&(c, _)| listed(c))
+                .flat_map(|(c, k)| k.nodes.map(|node| (node, c as u32))),
         );
         let node_pfacets = Csr::from_pairs(
             n,
@@ -108,7 +132,36 @@ impl Model {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::builders::test_support;
     use proptest::prelude::*;
+
+    /// A membrane and a cable: the contact adjacency lists the cable's connections at its
+    /// nodes and none of the membrane's (all of them PFacet edges); the rest is the full
+    /// adjacency.
+    #[test]
+    fn contact_adjacency_lists_only_connections_outside_pfacets() {
+        use crate::builders::{chain, membrane_rectangle, straight_line};
+        use crate::StructureOptions;
+        use flexdem_geom::Vec3;
+        let (mut model, mat) = test_support::model_with_material(900.0);
+        let opts = StructureOptions::new("m", 0.01, mat);
+        let (x, z) = (Vec3::x(), Vec3::z());
+        membrane_rectangle(&mut model, Vec3::zeros(), x, z, 1.0, 1.0, 3, 2, &opts).unwrap();
+        let line = straight_line(Vec3::new(0.0, 1.0, 0.0), Vec3::new(1.0, 1.0, 0.0), 4).unwrap();
+        chain(&mut model, &line, &StructureOptions::new("cable", 0.01, mat)).unwrap();
+        let (full, contact) = (model.adjacency(), model.contact_adjacency());
+        assert_eq!(full.node_pfacets, contact.node_pfacets);
+        assert_eq!(full.connection_pfacets, contact.connection_pfacets);
+        let edges = |c: u32| full.connection_pfacets.get(c as usize).len();
+        let mut cable_ends = 0;
+        for n in 0..model.particles.len() {
+            let outside: Vec<u32> =
+                full.node_connections.get(n).iter().copied().filter(|&c| edges(c) == 0).collect();
+            assert_eq!(contact.node_connections.get(n), outside.as_slice(), "node {n}");
+            cable_ends += outside.len();
+        }
+        assert_eq!(cable_ends, 2 * 4, "each of the cable's 4 connections at both its nodes");
+    }
 
     #[test]
     fn csr_rows_are_sorted_and_complete() {

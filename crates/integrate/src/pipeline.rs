@@ -19,7 +19,8 @@ pub type ForceHook = Box<dyn FnMut(Real, &Particles, &mut [Vec3], &mut [Vec3]) +
 pub(crate) struct Pipeline {
     /// Collidable elements and candidate pairs.
     pub(crate) collider: Collider,
-    /// Which features share nodes (for the one-contact-per-touching rule).
+    /// Which features share nodes (for the one-contact-per-touching rule; the connections
+    /// at a node only those that are elements of their own, `Model::contact_adjacency`).
     pub(crate) adjacency: Adjacency,
     /// Buffers of contact detection and update.
     pub(crate) contacts: ContactPipeline,
@@ -48,7 +49,7 @@ impl Pipeline {
         let n = state.model.particles.len();
         Pipeline {
             collider: Collider::new(&state.model, state.settings.verlet_factor),
-            adjacency: state.model.adjacency(),
+            adjacency: state.model.contact_adjacency(),
             contacts: ContactPipeline::new(&state.model, &state.contacts),
             force: vec![Vec3::zeros(); n],
             torque: vec![Vec3::zeros(); n],
