@@ -40,8 +40,8 @@ pub use frictional::{
     FrictionalParams,
 };
 pub use link::{
-    update_link, update_link_parts, LinkClass, LinkEvent, LinkForces, LinkKinematics,
-    LinkKinematicsMode, LinkParams, LinkPlastic, LinkSpring, LinkState, LinkStatus,
+    link_elastic_energy, update_link, update_link_parts, LinkClass, LinkEvent, LinkForces,
+    LinkKinematics, LinkKinematicsMode, LinkParams, LinkPlastic, LinkSpring, LinkState, LinkStatus,
 };
 pub use material::{effective_strength, ContactDamping, FailureMode, Material, MaterialError};
 pub use rotation::{rotate_about_axis, rotate_between, rotation_vector, transport_tangent};

@@ -322,6 +322,34 @@ pub fn update_link_parts(
     }
 }
 
+/// The elastic energy of a link after an update, from what an engine keeps of it: its normal
+/// force `fn_`, its moment `m` on node 2 (twist and bending summed), the state's shear force
+/// Fs and normal n, and its length `l` (YADE's kinematics scale the shear stiffness by 2r/l):
+/// `Fn²/2kn + |Fs|²/2ks + |Mt|²/2kt + |Mb|²/2kb`, `Mt = (m·n)n`, `Mb = m − Mt` (eq 8's
+/// springs). With the update's length it is the update's [`LinkForces::elastic_energy`] to
+/// rounding; zero for a broken link (no force is left).
+pub fn link_elastic_energy(
+    class: &LinkClass,
+    spring: &LinkSpring,
+    state: &LinkState,
+    fn_: Real,
+    m: &Vec3,
+    l: Real,
+) -> Real {
+    let k = &spring.stiffness;
+    let ks = match class.mode {
+        LinkKinematicsMode::Yade if l > 0.0 => k.ks * (2.0 * class.radius / l),
+        _ => k.ks,
+    };
+    let n = &state.normal;
+    let mt = n * n.dot(m);
+    let mb = m - mt;
+    spring_energy(fn_, k.kn)
+        + spring_energy(state.shear_force.norm(), ks)
+        + spring_energy(mt.norm(), k.kt)
+        + spring_energy(mb.norm(), k.kb)
+}
+
 #[inline]
 fn cohesive_step(
     p: &LinkClass,

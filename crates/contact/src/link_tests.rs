@@ -323,6 +323,35 @@ fn rigid_motion_of_a_loaded_link_changes_no_force() {
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(64))]
 
+    /// The energy made from the kept parts of an update (normal force, summed moment, the
+    /// state's shear force and normal, the length) is the update's, through random motions
+    /// of elastic, plastic and fragile links in both kinematics, to breakage.
+    #[test]
+    fn elastic_energy_from_the_kept_parts_is_the_updates(
+        dir in unit_vec3(),
+        moves in prop::collection::vec(vec3(1.0), 4 * 6),
+        yade in any::<bool>(), failure in 0..3u8,
+    ) {
+        let mode = if yade { LinkKinematicsMode::Yade } else { LinkKinematicsMode::Beam };
+        let m = match failure {
+            0 => mat(),
+            1 => mat().with_failure(FailureMode::Plastic)
+                .with_tensile_strength(Some(1e5)).with_shear_strength(Some(1e4)),
+            _ => mat().with_tensile_strength(Some(1e5)).with_shear_strength(Some(1e4)),
+        };
+        let mut sim = Sim::along(dir, &m, mode);
+        for step in moves.chunks(4) {
+            let f = sim.nudge(&[step[0] * 2e-3, step[1] * 0.05, step[2] * 2e-3, step[3] * 0.05], 1e-4);
+            let l = (sim.x[1] - sim.x[0]).norm();
+            let m_on_2 = f.twist_moment + f.bending_moment;
+            let e = link_elastic_energy(&sim.p.class, &sim.p.spring, &sim.s, f.normal_force, &m_on_2, l);
+            prop_assert!(
+                (e - f.elastic_energy).abs() <= 1e-9 * f.elastic_energy.max(1e-300),
+                "{} vs the update's {} ({:?})", e, f.elastic_energy, sim.s.status
+            );
+        }
+    }
+
     #[test]
     fn objectivity_rotating_and_translating_everything(
         dir in unit_vec3(),

@@ -61,17 +61,16 @@ pub(crate) fn describe(state: &State) -> String {
         )),
         _ => parts.push("No contact holds elastic energy".into()),
     }
-    let link = (0..state.links.loads.len())
-        .max_by(|&a, &b| {
-            state.links.loads[a].elastic_energy.total_cmp(&state.links.loads[b].elastic_energy)
-        })
-        .filter(|&l| state.links.loads[l].elastic_energy > 0.0);
-    if let Some(l) = link {
-        let [a, b] = state.links.nodes[l];
+    let links = &state.links;
+    let link = (0..links.loads.len())
+        .map(|l| (l, links.elastic_energy(l, &model.particles)))
+        .max_by(|a, b| a.1.total_cmp(&b.1))
+        .filter(|&(_, e)| e > 0.0);
+    if let Some((l, energy)) = link {
+        let [a, b] = links.nodes[l];
         parts.push(format!(
-            "the link holding the most ({:.3e} J) is connection {l} of {}, between nodes {a} \
-             and {b}",
-            state.links.loads[l].elastic_energy,
+            "the link holding the most ({energy:.3e} J) is connection {l} of {}, between nodes \
+             {a} and {b}",
             structure_name(model, model.connections[l].structure)
         ));
     }

@@ -3,8 +3,8 @@
 //! order so that the result does not depend on the number of threads.
 
 use flexdem_contact::{
-    update_link_parts, FailureMode, LinkClass, LinkEvent, LinkKinematics, LinkKinematicsMode,
-    LinkPlastic, LinkSpring, LinkState, LinkStatus,
+    link_elastic_energy, update_link_parts, FailureMode, LinkClass, LinkEvent, LinkKinematics,
+    LinkKinematicsMode, LinkPlastic, LinkSpring, LinkState, LinkStatus,
 };
 use flexdem_elements::{Model, Particles};
 use flexdem_geom::{Real, Vec3};
@@ -28,10 +28,13 @@ pub struct LinkUpdate {
 /// Links per parallel chunk.
 const CHUNK: usize = 512;
 
-/// What the force assembly, the energy watch and the output read of a link's last update
-/// (88 bytes; the full `LinkForces` of `update_link` is 216). The loads on the nodes are
-/// F₁ = −F₂, τ₁ = τ_lever − M, τ₂ = τ_lever + M; the shear force is the state's
-/// (`LinkState::shear_force`), the twisting moment (M·n)n and the bending moment the rest.
+/// What the force assembly reads of a link's last update (72 bytes; the full `LinkForces` of
+/// `update_link` is 216). The loads on the nodes are F₁ = −F₂, τ₁ = τ_lever − M,
+/// τ₂ = τ_lever + M; the shear force is the state's (`LinkState::shear_force`), the twisting
+/// moment (M·n)n and the bending moment the rest (n the state's normal). What only the output
+/// and the messages read is made from these when asked: the normal force
+/// ([`Links::normal_force`]) and the elastic energy ([`Links::elastic_energy`]); the links'
+/// total energy is summed by the update itself.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct LinkLoad {
     /// Force on node 2, Fn·n + Fs (N).
@@ -40,14 +43,10 @@ pub struct LinkLoad {
     pub lever_torque: Vec3,
     /// Moment on node 2, Mt + Mb (N·m).
     pub moment_on_2: Vec3,
-    /// Normal force Fn (N, compression positive).
-    pub normal_force: Real,
-    /// Elastic energy stored after the update (J).
-    pub elastic_energy: Real,
 }
 
-/// Every beam link: constants, state, and the forces of the last step. Per link, 192 bytes:
-/// nodes 8, class 4, spring 4, state 88, loads 88 (and 16 of the node → loads index), and 32
+/// Every beam link: constants, state, and the forces of the last step. Per link, 176 bytes:
+/// nodes 8, class 4, spring 4, state 88, loads 72 (and 16 of the node → loads index), and 32
 /// of plastic state when some material is plastic; the constants links share (limits, radius,
 /// failure mode) are kept once per class, their stiffnesses and rest length once per distinct
 /// spring (a regular mesh has a few: 2 in the benchmark's membrane; an irregular one pays 40
@@ -231,6 +230,34 @@ impl Links {
         &self.springs[self.spring[k] as usize]
     }
 
+    /// Normal force Fn of link `k` at its last update (N, compression positive): the force
+    /// on node 2 along the link's normal, F₂·n (F₂ = Fn·n + Fs, Fs ⟂ n: the update's Fn to
+    /// rounding). Zero before the first update and for a broken link.
+    pub fn normal_force(&self, k: usize) -> Real {
+        self.loads.get(k).map_or(0.0, |l| l.force_on_2.dot(&self.state[k].normal))
+    }
+
+    /// Elastic energy held by link `k` after its last update (J):
+    /// `Fn²/2kn + |Fs|²/2ks + |Mt|²/2kt + |Mb|²/2kb` from its load and state
+    /// ([`link_elastic_energy`]), with the nodes' positions `p` for the length (YADE's
+    /// kinematics soften the shear by 2r/L: the length now, not at the update, which moves
+    /// that term by O(v·dt/L)). Zero before the first update and for a broken link.
+    pub fn elastic_energy(&self, k: usize, p: &Particles) -> Real {
+        let Some(load) = self.loads.get(k) else { return 0.0 };
+        let [a, b] = self.nodes[k].map(|n| n as usize);
+        let length = (p.pos[b] - p.pos[a]).norm();
+        let class = &self.classes[self.class[k] as usize];
+        let m = &load.moment_on_2;
+        link_elastic_energy(
+            class,
+            self.spring_of(k),
+            &self.state[k],
+            self.normal_force(k),
+            m,
+            length,
+        )
+    }
+
     /// Number of links.
     pub fn len(&self) -> usize {
         self.nodes.len()
@@ -308,8 +335,6 @@ impl Links {
                         force_on_2: f.force_on_2,
                         lever_torque: f.lever_torque,
                         moment_on_2: f.twist_moment + f.bending_moment,
-                        normal_force: f.normal_force,
-                        elastic_energy: f.elastic_energy,
                     };
                 }
                 sums
@@ -375,8 +400,43 @@ mod tests {
             + size_of::<LinkLoad>();
         assert_eq!(
             (size_of::<LinkSpring>(), size_of::<LinkState>(), size_of::<LinkLoad>(), per_link),
-            (40, 88, 88, 192)
+            (40, 88, 72, 176)
         );
+    }
+
+    /// The normal force and the elastic energy made from a link's load and state are the
+    /// update's: a chain with its last node pulled, bent and turned, in both kinematics.
+    #[test]
+    fn normal_force_and_energy_are_made_from_the_load() {
+        for mode in [LinkKinematicsMode::Beam, LinkKinematicsMode::Yade] {
+            let mut model = chain_model();
+            let mut links = Links::from_model(&model, mode);
+            assert_eq!(
+                (links.normal_force(0), links.elastic_energy(0, &model.particles)),
+                (0.0, 0.0)
+            );
+            let p = &mut model.particles;
+            let last = p.len() - 1;
+            p.pos[last] += Vec3::new(1e-3, 2e-3, -1e-3);
+            p.ori[last] = nalgebra::UnitQuaternion::from_scaled_axis(Vec3::new(0.01, 0.02, 0.03));
+            p.vel[last] = Vec3::new(0.1, 0.0, 0.0);
+            let update = links.update(p, 1e-5);
+            let k = links.len() - 1;
+            // the last link alone is strained: its force from the update's own terms
+            let l = (p.pos[last] - p.pos[last - 1]).norm();
+            let spring = links.spring_of(k).clone();
+            let expected = spring.stiffness.kn * (spring.rest_length - l);
+            let fn_ = links.normal_force(k);
+            assert!((fn_ - expected).abs() <= 1e-12 * expected.abs(), "{fn_} vs {expected}");
+            assert!(fn_ < 0.0, "pulled: tension");
+            let total: Real = (0..links.len()).map(|k| links.elastic_energy(k, p)).sum();
+            assert!(update.elastic_energy > 0.0);
+            assert!(
+                (total - update.elastic_energy).abs() <= 1e-12 * update.elastic_energy,
+                "{mode:?}: {total} vs the update's {}",
+                update.elastic_energy
+            );
+        }
     }
 
     /// Links with the same stiffnesses and rest length share one spring: a chain of equal

@@ -102,7 +102,6 @@ pub fn connections_polydata(sim: &Simulation) -> PolyData {
             Some(LinkStatus::Broken) => 2,
         })
         .collect();
-    let force = |i: usize| links.loads.get(i);
     PolyData {
         points,
         cell_kind: CellKind::Lines,
@@ -113,7 +112,7 @@ pub fn connections_polydata(sim: &Simulation) -> PolyData {
             DataArray::scalars("radius", connections.iter().map(|c| c.radius).collect()),
             DataArray::scalars(
                 "axial_force",
-                (0..connections.len()).map(|i| force(i).map_or(0.0, |f| f.normal_force)).collect(),
+                (0..connections.len()).map(|i| links.normal_force(i)).collect(),
             ),
             DataArray::vectors(
                 "shear_force",

@@ -71,7 +71,7 @@ fn snapshot(sim: &Simulation) -> Snapshot {
         pos: pos.clone(),
         vel: sim.model().particles.vel.clone(),
         force: sim.forces().to_vec(),
-        axial: sim.links().loads.iter().map(|f| f.normal_force).collect(),
+        axial: (0..sim.links().len()).map(|k| sim.links().normal_force(k)).collect(),
         contacts,
     }
 }

@@ -153,8 +153,8 @@ pub(crate) fn links(sim: &Simulation) -> LinkTable {
         ..LinkTable::default()
     };
     if links.loads.len() == count {
-        for (f, s) in links.loads.iter().zip(&links.state) {
-            t.normal_force.push(f.normal_force);
+        for (k, (f, s)) in links.loads.iter().zip(&links.state).enumerate() {
+            t.normal_force.push(links.normal_force(k));
             t.shear_force.extend([s.shear_force.x, s.shear_force.y, s.shear_force.z]);
             t.force.extend([f.force_on_2.x, f.force_on_2.y, f.force_on_2.z]);
         }
