@@ -55,8 +55,10 @@ pub struct Collider {
     pub elements: Vec<Element>,
     /// Collidable index of each free sphere (by particle id), or `NONE`.
     pub(crate) sphere_element: Vec<u32>,
-    /// Collidable index of each connection, or `NONE` (connections of PFacets).
-    pub(crate) connection_element: Vec<u32>,
+    /// Collidable index of each connection, or `NONE` (connections of PFacets), up to the
+    /// last collidable one ([`Collider::connection_element`] reads `NONE` past it: a
+    /// membrane's connections, all PFacet edges, take no entry).
+    connection_elements: Vec<u32>,
     /// Collidable index of each PFacet.
     pub(crate) pfacet_element: Vec<u32>,
     /// Candidate pairs `(i, j)`, `i < j`, indices into `elements`, sorted, but for the pairs
@@ -100,7 +102,7 @@ impl Collider {
         let p = &model.particles;
         let mut c = Collider {
             sphere_element: vec![NONE; p.len()],
-            connection_element: vec![NONE; model.connections.len()],
+            connection_elements: vec![NONE; model.connections.len()],
             pfacet_element: vec![NONE; model.pfacets.len()],
             ..Default::default()
         };
@@ -118,10 +120,13 @@ impl Collider {
         }
         for (k, _) in model.connections.iter().enumerate() {
             if !in_pfacet[k] {
-                c.connection_element[k] = c.elements.len() as u32;
+                c.connection_elements[k] = c.elements.len() as u32;
                 c.elements.push(Element::Connection(k as u32));
             }
         }
+        let kept = c.connection_elements.iter().rposition(|&e| e != NONE).map_or(0, |k| k + 1);
+        c.connection_elements.truncate(kept);
+        c.connection_elements.shrink_to_fit();
         for (k, _) in model.pfacets.iter().enumerate() {
             c.pfacet_element[k] = c.elements.len() as u32;
             c.elements.push(Element::PFacet(k as u32));
@@ -155,6 +160,12 @@ impl Collider {
         }
         c.wall_limit = c.limits.iter().copied().fold(Real::INFINITY, Real::min);
         c
+    }
+
+    /// Collidable index of connection `k`, or `NONE` (a PFacet's edge, or no such connection).
+    #[inline]
+    pub(crate) fn connection_element(&self, k: u32) -> u32 {
+        self.connection_elements.get(k as usize).copied().unwrap_or(NONE)
     }
 
     /// Whether some particle or wall has moved by more than its limit since the last build
@@ -298,5 +309,40 @@ impl Collider {
             self.paired[a as usize] = true;
             self.paired[b as usize] = true;
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use flexdem_contact::Material;
+    use flexdem_elements::builders::{chain, membrane_rectangle, straight_line};
+    use flexdem_elements::StructureOptions;
+
+    /// A cable after a membrane: the cable's connections are elements of their own, the
+    /// membrane's (PFacet edges) are not and take no entry; a membrane alone stores none.
+    #[test]
+    fn only_connections_outside_pfacets_are_elements() {
+        let mut model = Model::new();
+        let mat = model.add_material(Material::new(1e7, 0.3, 1000.0, 0.5).unwrap()).unwrap();
+        let opts = StructureOptions::new("m", 0.01, mat);
+        let (x, z) = (Vec3::x(), Vec3::z());
+        membrane_rectangle(&mut model, Vec3::zeros(), x, z, 1.0, 1.0, 2, 2, &opts).unwrap();
+        let membrane_edges = model.connections.len() as u32;
+        let alone = Collider::new(&model, 0.5);
+        assert!(alone.connection_elements.is_empty());
+        assert_eq!(alone.connection_element(0), NONE);
+        let line = straight_line(Vec3::new(0.0, 2.0, 0.0), Vec3::new(1.0, 2.0, 0.0), 3).unwrap();
+        chain(&mut model, &line, &StructureOptions::new("cable", 0.01, mat)).unwrap();
+        let c = Collider::new(&model, 0.5);
+        for k in 0..membrane_edges {
+            assert_eq!(c.connection_element(k), NONE, "membrane edge {k}");
+        }
+        for k in membrane_edges..membrane_edges + 3 {
+            let e = c.connection_element(k);
+            assert_eq!(c.elements[e as usize], Element::Connection(k));
+        }
+        assert_eq!(c.connection_element(membrane_edges + 3), NONE, "no such connection");
+        assert_eq!(c.elements.len(), 3 + model.pfacets.len());
     }
 }

@@ -182,19 +182,14 @@ fn containing<'a>(
             }
         }
         Feature::Edge(c) => {
-            let e = collider.connection_element[c as usize];
+            let e = collider.connection_element(c);
             ((e != NONE).then_some(e), none, adj.connection_pfacets.get(c as usize))
         }
         Feature::Face(f) => (Some(collider.pfacet_element[f as usize]), none, none),
         Feature::Wall(_) => (None, none, none),
     };
     own.into_iter()
-        .chain(
-            connections
-                .iter()
-                .map(|&c| collider.connection_element[c as usize])
-                .filter(|&e| e != NONE),
-        )
+        .chain(connections.iter().map(|&c| collider.connection_element(c)).filter(|&e| e != NONE))
         .chain(pfacets.iter().map(|&f| collider.pfacet_element[f as usize]))
 }
 
@@ -289,7 +284,7 @@ impl ContactPipeline {
         let index_of = |e: Element| -> u32 {
             match e {
                 Element::Particle(i) => collider.sphere_element[i as usize],
-                Element::Connection(k) => collider.connection_element[k as usize],
+                Element::Connection(k) => collider.connection_element(k),
                 Element::PFacet(k) => collider.pfacet_element[k as usize],
             }
         };
