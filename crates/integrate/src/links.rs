@@ -424,7 +424,7 @@ mod tests {
             let k = links.len() - 1;
             // the last link alone is strained: its force from the update's own terms
             let l = (p.pos[last] - p.pos[last - 1]).norm();
-            let spring = links.spring_of(k).clone();
+            let spring = *links.spring_of(k);
             let expected = spring.stiffness.kn * (spring.rest_length - l);
             let fn_ = links.normal_force(k);
             assert!((fn_ - expected).abs() <= 1e-12 * expected.abs(), "{fn_} vs {expected}");
