@@ -7,7 +7,7 @@ use crate::dashpots::damped_stiffness_factor;
 use crate::energy::PendingWork;
 use crate::integrator::{leapfrog_step, Leapfrog, StepWork};
 use crate::links::LinkUpdate;
-use crate::neighbours::{merged_fresh, Pick};
+use crate::neighbours::{merged_fresh, sites, Pick};
 use crate::offsets::release_offsets;
 use crate::parallel::MIN_PARALLEL_CHEAP;
 use crate::pressure::add_pressure_forces;
@@ -352,17 +352,20 @@ impl Simulation {
         let contacts = &self.state.contacts;
         let picks = merged_fresh(&contacts.list, &fresh.fresh, &contacts.pairs, &fresh.pairs.fresh);
         for pick in picks {
-            let made;
-            let c = match pick {
-                Pick::General(i) => &contacts.list[i],
+            // the sites, constants and normal only (a pair's whole `Contact` is not made)
+            let ((site1, site2), params, normal) = match pick {
+                Pick::General(i) => {
+                    let c = &contacts.list[i];
+                    ((c.site1, c.site2), c.params, c.state.normal)
+                }
                 Pick::Pair(i) => {
-                    made = contacts.pairs.contact(&self.state.model, i).expect("a fresh pair");
-                    &made
+                    let (key, c) = contacts.pairs.get(i);
+                    (sites(&self.state.model, &key), c.params, c.state.normal)
                 }
             };
             let k = &mut self.state.clock.stiffness;
-            add_contact_stiffness(k, [&c.site1, &c.site2], &c.params, &c.state.normal, p);
-            for site in [&c.site1, &c.site2] {
+            add_contact_stiffness(k, [&site1, &site2], &params, &normal, p);
+            for site in [&site1, &site2] {
                 for slot in 0..site.node_count() {
                     let n = site.nodes[slot] as usize;
                     if p.blocked[n] == Dofs::ALL {
