@@ -19,6 +19,7 @@ pub mod damping;
 pub mod energy;
 pub mod frictional;
 pub mod link;
+pub mod link_lanes;
 pub mod material;
 pub mod rotation;
 pub mod stiffness;

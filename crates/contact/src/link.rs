@@ -550,7 +550,7 @@ fn inv(k: Real) -> Real {
 
 #[cfg(test)]
 #[path = "link_tests.rs"]
-mod tests;
+pub(crate) mod tests;
 
 #[cfg(test)]
 #[path = "link_strength_tests.rs"]

@@ -5,15 +5,15 @@ use crate::test_support::{close, unit_quaternion, unit_vec3, vec3};
 use nalgebra::DMatrix;
 use proptest::prelude::*;
 
-pub(super) const L: Real = 0.1;
-pub(super) const R: Real = 0.01;
+pub(crate) const L: Real = 0.1;
+pub(crate) const R: Real = 0.01;
 
-pub(super) fn mat() -> Material {
+pub(crate) fn mat() -> Material {
     Material::new(1e8, 0.3, 1000.0, 0.5).unwrap()
 }
 
 /// Two nodes joined by one link, advanced by prescribed velocities with q ← exp(ω·dt)·q.
-pub(super) struct Sim {
+pub(crate) struct Sim {
     pub p: LinkParams,
     pub s: LinkState,
     pub plastic: LinkPlastic,

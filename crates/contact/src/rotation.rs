@@ -17,7 +17,7 @@ pub fn rotate_about_axis(v: Vec3, axis: Vec3, angle: Real) -> Vec3 {
 
 /// Below this angle `sin_one_minus_cos` uses its series: the first omitted terms, ψ⁷/7! and
 /// ψ⁸/8!, are below 1e-18 relative there.
-const SMALL_ANGLE: Real = 5e-3;
+pub(crate) const SMALL_ANGLE: Real = 5e-3;
 
 /// (sin ψ, 1 − cos ψ), by Taylor series for |ψ| < 5e-3 (a twist of spin·dt is almost always
 /// that small; the series is exact to round-off there and four times cheaper than libm's
@@ -37,7 +37,7 @@ pub fn sin_one_minus_cos(angle: Real) -> (Real, Real) {
 
 /// Below this x, atan(x)/x is summed as a series: the first omitted term, x¹⁰/11, is below
 /// 6e-17 relative there.
-const ATAN_SERIES_BELOW: Real = 0.03;
+pub(crate) const ATAN_SERIES_BELOW: Real = 0.03;
 
 /// atan(x)/x from y = x² for x < [`ATAN_SERIES_BELOW`]: 1 − y/3 + y²/5 − y³/7 + y⁴/9.
 #[inline]

@@ -2,6 +2,7 @@
 //! (model.md §3), updated in parallel each step, their node loads summed per node in a fixed
 //! order so that the result does not depend on the number of threads.
 
+use flexdem_contact::link_lanes::{update_link_lanes, LaneNodes, LANES};
 use flexdem_contact::{
     link_elastic_energy, update_link_parts, FailureMode, LinkClass, LinkEvent, LinkKinematics,
     LinkKinematicsMode, LinkPlastic, LinkSpring, LinkState, LinkStatus,
@@ -305,9 +306,9 @@ impl Links {
                 // one zero plastic state for the chunk's links when no class is plastic: a
                 // fragile link never writes it (`a_fragile_link_never_yields`)
                 let mut zero = LinkPlastic::default();
-                for k in 0..nodes.len() {
+                let kin_of = |k: usize| {
                     let [a, b] = nodes[k].map(|n| n as usize);
-                    let kin = LinkKinematics {
+                    LinkKinematics {
                         x1: p.pos[a],
                         x2: p.pos[b],
                         v1: p.vel[a],
@@ -316,26 +317,73 @@ impl Links {
                         w2: p.ang_vel[b],
                         q1: p.ori[a],
                         q2: p.ori[b],
-                    };
-                    let class = &classes[class[k] as usize];
-                    let pl = match plastic.as_deref_mut() {
-                        Some(pl) => &mut pl[k],
-                        None => &mut zero,
-                    };
-                    let sp = &springs[spring[k] as usize];
-                    let f = update_link_parts(class, sp, &mut state[k], pl, &kin, dt);
-                    match f.event {
-                        LinkEvent::BrokeInTension | LinkEvent::Separated => sums.events.broken += 1,
-                        LinkEvent::LostCohesion => sums.events.decohered += 1,
-                        LinkEvent::None => {}
                     }
-                    sums.elastic_energy += f.elastic_energy;
-                    sums.dissipated += f.dissipated.total();
-                    loads[k] = LinkLoad {
-                        force_on_2: f.force_on_2,
-                        lever_torque: f.lever_torque,
-                        moment_on_2: f.twist_moment + f.bending_moment,
+                };
+                // four links at once on their common path (`update_link_lanes`: the scalar
+                // law's bits), the scalar law for those off it and for the last few; the
+                // sums added in link order either way
+                let n = nodes.len();
+                let mut k = 0;
+                while k < n {
+                    // the lanes' energies, added below in link order with the others'
+                    let mut energy = [0.0; LANES];
+                    let (count, taken) = if k + LANES <= n {
+                        let cls = std::array::from_fn(|j| &classes[class[k + j] as usize]);
+                        let sps = std::array::from_fn(|j| &springs[spring[k + j] as usize]);
+                        let four: &mut [LinkState; LANES] =
+                            (&mut state[k..k + LANES]).try_into().expect("four links");
+                        let at = LaneNodes {
+                            pos: &p.pos,
+                            vel: &p.vel,
+                            ang_vel: &p.ang_vel,
+                            ori: &p.ori,
+                            nodes: std::array::from_fn(|j| nodes[k + j].map(|n| n as usize)),
+                        };
+                        let out = &mut loads[k..k + LANES];
+                        let taken = update_link_lanes(cls, sps, four, &at, dt, |j, l| {
+                            energy[j] = l.elastic_energy;
+                            out[j] = LinkLoad {
+                                force_on_2: l.force_on_2,
+                                lever_torque: l.lever_torque,
+                                moment_on_2: l.moment_on_2,
+                            };
+                        });
+                        (LANES, taken)
+                    } else {
+                        (1, 0)
                     };
+                    for j in 0..count {
+                        if taken & (1 << j) != 0 {
+                            // (no event, nothing dissipated: the sum gains +0)
+                            sums.elastic_energy += energy[j];
+                            sums.dissipated += 0.0;
+                            continue;
+                        }
+                        let i = k + j;
+                        let kin = kin_of(i);
+                        let cl = &classes[class[i] as usize];
+                        let pl = match plastic.as_deref_mut() {
+                            Some(pl) => &mut pl[i],
+                            None => &mut zero,
+                        };
+                        let sp = &springs[spring[i] as usize];
+                        let f = update_link_parts(cl, sp, &mut state[i], pl, &kin, dt);
+                        match f.event {
+                            LinkEvent::BrokeInTension | LinkEvent::Separated => {
+                                sums.events.broken += 1
+                            }
+                            LinkEvent::LostCohesion => sums.events.decohered += 1,
+                            LinkEvent::None => {}
+                        }
+                        sums.elastic_energy += f.elastic_energy;
+                        sums.dissipated += f.dissipated.total();
+                        loads[i] = LinkLoad {
+                            force_on_2: f.force_on_2,
+                            lever_torque: f.lever_torque,
+                            moment_on_2: f.twist_moment + f.bending_moment,
+                        };
+                    }
+                    k += count;
                 }
                 sums
             })
