@@ -348,7 +348,7 @@ pub fn update_link_lanes(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::link::tests::{mat, Sim};
+    use crate::link::tests::{kinematics, mat, Sim};
     use crate::link::{update_link_parts, LinkKinematics, LinkPlastic};
     use crate::test_support::{unit_quaternion, unit_vec3, vec3};
     use nalgebra::UnitQuaternion;
@@ -382,17 +382,7 @@ mod tests {
         let q = std::array::from_fn::<UnitQuaternion<Real>, 2, _>(|i| {
             UnitQuaternion::from_scaled_axis(w[i] * dt) * sim.q[i]
         });
-        let kin = LinkKinematics {
-            x1: x[0],
-            x2: x[1],
-            v1: v[0],
-            v2: v[1],
-            w1: w[0],
-            w2: w[1],
-            q1: q[0],
-            q2: q[1],
-        };
-        (sim, kin)
+        (sim, kinematics(x, q, v, w))
     }
 
     /// Runs four lanes and the scalar law on copies: a lane that took the path has the scalar

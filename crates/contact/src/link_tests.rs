@@ -12,6 +12,25 @@ pub(crate) fn mat() -> Material {
     Material::new(1e8, 0.3, 1000.0, 0.5).unwrap()
 }
 
+/// The kinematics of two nodes at `x`, turned to `q`, moving at `v` and spinning at `w`.
+pub(crate) fn kinematics(
+    x: [Vec3; 2],
+    q: [UnitQuaternion<Real>; 2],
+    v: [Vec3; 2],
+    w: [Vec3; 2],
+) -> LinkKinematics {
+    LinkKinematics {
+        x1: x[0],
+        x2: x[1],
+        v1: v[0],
+        v2: v[1],
+        w1: w[0],
+        w2: w[1],
+        q1: q[0],
+        q2: q[1],
+    }
+}
+
 /// Two nodes joined by one link, advanced by prescribed velocities with q ← exp(ω·dt)·q.
 pub(crate) struct Sim {
     pub p: LinkParams,
@@ -67,16 +86,7 @@ impl Sim {
     ) -> LinkForces {
         self.x = x;
         self.q = q;
-        let kin = LinkKinematics {
-            x1: x[0],
-            x2: x[1],
-            v1: v[0],
-            v2: v[1],
-            w1: w[0],
-            w2: w[1],
-            q1: q[0],
-            q2: q[1],
-        };
+        let kin = kinematics(x, q, v, w);
         let f = update_link(&self.p, &mut self.s, &mut self.plastic, &kin, dt);
         self.dissipated += f.dissipated;
         let o = &self.last;
