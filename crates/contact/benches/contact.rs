@@ -1,11 +1,14 @@
 //! Criterion benchmarks of the contact-law kernels: one frictional-contact update and one
-//! beam-link update (beam and yade kinematics). Inputs are generated from a fixed seed outside
+//! beam-link update (beam and yade kinematics), and four links at once by the lanes of
+//! `link_lanes` against four scalar updates of the same links. Inputs are generated from a fixed seed outside
 //! the timed closures; each iteration updates one contact of a pool so that the state and the
 //! inputs vary from call to call.
 use criterion::{criterion_group, criterion_main, Criterion};
+use flexdem_contact::link_lanes::{update_link_lanes, LaneNodes, LANES};
 use flexdem_contact::{
-    update_frictional_contact, update_link, ContactKinematics, FrictionalContact, FrictionalParams,
-    LinkKinematics, LinkKinematicsMode, LinkParams, LinkPlastic, LinkState, Material,
+    update_frictional_contact, update_link, update_link_parts, ContactKinematics,
+    FrictionalContact, FrictionalParams, LinkKinematics, LinkKinematicsMode, LinkParams,
+    LinkPlastic, LinkState, Material,
 };
 use flexdem_geom::{Real, Vec3};
 use nalgebra::UnitQuaternion;
@@ -80,7 +83,8 @@ fn frictional(c: &mut Criterion) {
     });
 }
 
-fn link(c: &mut Criterion, mode: LinkKinematicsMode, name: &str) {
+/// A pool of links of `mode` (states and kinematics), loaded a little.
+fn link_pool(mode: LinkKinematicsMode) -> (LinkParams, Vec<LinkState>, Vec<LinkKinematics>) {
     let mut rng = Rng(7);
     let m = material();
     let (l0, r) = (0.1, 0.01);
@@ -107,6 +111,11 @@ fn link(c: &mut Criterion, mode: LinkKinematicsMode, name: &str) {
             q2: UnitQuaternion::from_scaled_axis(rng.vec(1e-3)) * q2,
         });
     }
+    (p, states, kins)
+}
+
+fn link(c: &mut Criterion, mode: LinkKinematicsMode, name: &str) {
+    let (p, mut states, kins) = link_pool(mode);
     let mut plastic = vec![LinkPlastic::default(); POOL];
     let mut i = 0;
     c.bench_function(name, |b| {
@@ -119,9 +128,54 @@ fn link(c: &mut Criterion, mode: LinkKinematicsMode, name: &str) {
     });
 }
 
+/// Four consecutive links of the pool per iteration: by the lanes, and by four scalar updates.
+fn four_links(c: &mut Criterion) {
+    let (p, states, kins) = link_pool(LinkKinematicsMode::Beam);
+    // node 2k and 2k + 1 of link k, in the particles' arrays
+    let pos: Vec<Vec3> = kins.iter().flat_map(|k| [k.x1, k.x2]).collect();
+    let vel: Vec<Vec3> = kins.iter().flat_map(|k| [k.v1, k.v2]).collect();
+    let ang_vel: Vec<Vec3> = kins.iter().flat_map(|k| [k.w1, k.w2]).collect();
+    let ori: Vec<UnitQuaternion<Real>> = kins.iter().flat_map(|k| [k.q1, k.q2]).collect();
+    let mut lane_states = states.clone();
+    let mut i = 0;
+    c.bench_function("four_links_lanes", |b| {
+        b.iter(|| {
+            i = (i + LANES) % POOL;
+            let nodes = std::array::from_fn(|j| [2 * (i + j), 2 * (i + j) + 1]);
+            let at = LaneNodes { pos: &pos, vel: &vel, ang_vel: &ang_vel, ori: &ori, nodes };
+            let four: &mut [LinkState; LANES] =
+                (&mut lane_states[i..i + LANES]).try_into().expect("four links");
+            let classes = [&p.class; LANES];
+            let springs = [&p.spring; LANES];
+            let mut e = 0.0;
+            let taken = update_link_lanes(classes, springs, four, &at, black_box(1e-5), |_, l| {
+                e += l.elastic_energy
+            });
+            black_box((taken, e))
+        })
+    });
+    let mut scalar_states = states;
+    let mut plastic = LinkPlastic::default();
+    let mut i = 0;
+    c.bench_function("four_links_scalar", |b| {
+        b.iter(|| {
+            i = (i + LANES) % POOL;
+            let mut e = 0.0;
+            for j in 0..LANES {
+                let s = &mut scalar_states[i + j];
+                let k = black_box(&kins[i + j]);
+                e += update_link_parts(&p.class, &p.spring, s, &mut plastic, k, black_box(1e-5))
+                    .elastic_energy;
+            }
+            black_box(e)
+        })
+    });
+}
+
 fn links(c: &mut Criterion) {
     link(c, LinkKinematicsMode::Beam, "link_update_beam");
     link(c, LinkKinematicsMode::Yade, "link_update_yade");
+    four_links(c);
 }
 
 criterion_group!(benches, frictional, links);
