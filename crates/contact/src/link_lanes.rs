@@ -18,9 +18,9 @@ use crate::link::{LinkClass, LinkSpring, LinkState, LinkStatus};
 use crate::material::FailureMode;
 use crate::rotation::{ATAN_SERIES_BELOW, SMALL_ANGLE};
 use crate::LinkKinematicsMode;
+use flexdem_geom::lanes::{f64x4, Q4, V3};
 use flexdem_geom::{Real, Vec3};
 use nalgebra::UnitQuaternion;
-use wide::f64x4;
 
 /// Links per call.
 pub const LANES: usize = 4;
@@ -37,98 +37,6 @@ pub struct LaneLoad {
     pub moment_on_2: Vec3,
     /// Elastic energy stored after the update (J).
     pub elastic_energy: Real,
-}
-
-/// Three lanes of 3-vectors.
-#[derive(Clone, Copy)]
-struct V3 {
-    x: f64x4,
-    y: f64x4,
-    z: f64x4,
-}
-
-impl V3 {
-    #[inline(always)]
-    fn gather(f: impl Fn(usize) -> Vec3) -> V3 {
-        let v: [Vec3; LANES] = std::array::from_fn(f);
-        V3 {
-            x: f64x4::new(v.map(|v| v.x)),
-            y: f64x4::new(v.map(|v| v.y)),
-            z: f64x4::new(v.map(|v| v.z)),
-        }
-    }
-
-    /// The four lanes as vectors (each coordinate taken out once).
-    #[inline(always)]
-    fn lanes(&self) -> [Vec3; LANES] {
-        let (x, y, z) = (self.x.to_array(), self.y.to_array(), self.z.to_array());
-        std::array::from_fn(|j| Vec3::new(x[j], y[j], z[j]))
-    }
-
-    #[inline(always)]
-    fn add(self, o: V3) -> V3 {
-        V3 { x: self.x + o.x, y: self.y + o.y, z: self.z + o.z }
-    }
-
-    #[inline(always)]
-    fn sub(self, o: V3) -> V3 {
-        V3 { x: self.x - o.x, y: self.y - o.y, z: self.z - o.z }
-    }
-
-    #[inline(always)]
-    fn scale(self, s: f64x4) -> V3 {
-        V3 { x: self.x * s, y: self.y * s, z: self.z * s }
-    }
-
-    /// nalgebra's order: (x·x' + y·y') + z·z'.
-    #[inline(always)]
-    fn dot(self, o: V3) -> f64x4 {
-        self.x * o.x + self.y * o.y + self.z * o.z
-    }
-
-    /// nalgebra's `norm_squared`: 0 + the dot product (the same bits: it is never −0).
-    #[inline(always)]
-    fn norm_squared(self) -> f64x4 {
-        self.dot(self)
-    }
-
-    #[inline(always)]
-    fn cross(self, b: V3) -> V3 {
-        V3 {
-            x: self.y * b.z - self.z * b.y,
-            y: self.z * b.x - self.x * b.z,
-            z: self.x * b.y - self.y * b.x,
-        }
-    }
-
-    /// `if mask { a } else { b }` lane by lane.
-    #[inline(always)]
-    fn select(mask: f64x4, a: V3, b: V3) -> V3 {
-        V3 { x: mask.select(a.x, b.x), y: mask.select(a.y, b.y), z: mask.select(a.z, b.z) }
-    }
-}
-
-/// Four lanes of quaternions (w, i, j, k).
-#[derive(Clone, Copy)]
-struct Q4 {
-    w: f64x4,
-    i: f64x4,
-    j: f64x4,
-    k: f64x4,
-}
-
-impl Q4 {
-    /// nalgebra's Hamilton product, term for term.
-    #[inline(always)]
-    fn mul(self, r: Q4) -> Q4 {
-        let s = self;
-        Q4 {
-            w: s.w * r.w - s.i * r.i - s.j * r.j - s.k * r.k,
-            i: s.w * r.i + s.i * r.w + s.j * r.k - s.k * r.j,
-            j: s.w * r.j - s.i * r.k + s.j * r.w + s.k * r.i,
-            k: s.w * r.k + s.i * r.j - s.j * r.i + s.k * r.w,
-        }
-    }
 }
 
 /// Whether a link may take the common path before anything is computed: cohesive, of a
@@ -182,13 +90,13 @@ pub fn update_link_lanes(
     // length and normal
     let x1 = V3::gather(|j| at.pos[n1[j]]);
     let x2 = V3::gather(|j| at.pos[n2[j]]);
-    let d = x2.sub(x1);
+    let d = x2.minus(x1);
     let l = d.norm_squared().sqrt();
     let inv_l = one / l;
     let n = d.scale(inv_l);
     let w1 = V3::gather(|j| at.ang_vel[n1[j]]);
     let w2 = V3::gather(|j| at.ang_vel[n2[j]]);
-    let w12 = w1.add(w2);
+    let w12 = w1.plus(w2);
     let spin = half * n.dot(w12);
 
     // the stored shear force carried onto the new tangent plane (`transport_tangent`)
@@ -197,8 +105,8 @@ pub fn update_link_lanes(
     let angle = spin * dt4;
     let mag2 = v.norm_squared();
     let one_plus = one + a.dot(n);
-    let s = a.add(n);
-    let swung = v.sub(s.scale(s.dot(v) / one_plus)).add(n.scale(f64x4::splat(2.0) * a.dot(v)));
+    let s = a.plus(n);
+    let swung = v.minus(s.scale(s.dot(v) / one_plus)).plus(n.scale(f64x4::splat(2.0) * a.dot(v)));
     let a2 = angle * angle;
     let sin = angle * (one - a2 * f64x4::splat(1.0 / 6.0) * (one - a2 * f64x4::splat(1.0 / 20.0)));
     let omc =
@@ -217,9 +125,9 @@ pub fn update_link_lanes(
         }
         (f64x4::new(sin), f64x4::new(omc))
     };
-    let twisted = swung.scale(one - omc).add(n.cross(swung).scale(sin));
+    let twisted = swung.scale(one - omc).plus(n.cross(swung).scale(sin));
     let t = V3::select(angle.simd_eq(zero), swung, twisted);
-    let t = t.sub(n.scale(n.dot(t)));
+    let t = t.minus(n.scale(n.dot(t)));
     let t2 = t.norm_squared();
     let restored = V3::select(t2.simd_gt(zero), t.scale((mag2 / t2).sqrt()), t);
     let rotated = V3::select(mag2.simd_eq(zero), v, restored);
@@ -227,8 +135,8 @@ pub fn update_link_lanes(
     // relative tangential velocity of the midpoint
     let v1 = V3::gather(|j| at.vel[n1[j]]);
     let v2 = V3::gather(|j| at.vel[n2[j]]);
-    let us = v2.sub(v1).sub(w12.cross(n).scale(half * l));
-    let us = us.sub(n.scale(n.dot(us)));
+    let us = v2.minus(v1).minus(w12.cross(n).scale(half * l));
+    let us = us.minus(n.scale(n.dot(us)));
     let alpha = lanes(|j| match classes[j].mode {
         LinkKinematicsMode::Yade if l.to_array()[j] > 0.0 => {
             2.0 * classes[j].radius * inv_l.to_array()[j]
@@ -242,7 +150,7 @@ pub fn update_link_lanes(
     let rest = lanes(|j| springs[j].rest_length);
     // (the plastic elongation of a fragile link is zero)
     let fn_ = kn * ((rest + zero) - l);
-    let fs = rotated.sub(us.scale(ks * dt4));
+    let fs = rotated.minus(us.scale(ks * dt4));
 
     // moments from the relative rotation q2·q2⁰⁻¹·q1⁰·q1⁻¹ (`rotation_vector`, its series)
     fn quat(f: impl Fn(usize) -> UnitQuaternion<Real>) -> Q4 {
@@ -257,7 +165,7 @@ pub fn update_link_lanes(
     let q2 = quat(|j| at.ori[n2[j]]);
     let r = quat(|j| states[j].rest_rotation);
     let q1_inv = quat(|j| at.ori[n1[j]].inverse());
-    let q = q2.mul(r).mul(q1_inv);
+    let q = q2.times(r).times(q1_inv);
     let qv = V3 { x: q.i, y: q.j, z: q.k };
     let s2 = qv.norm_squared();
     let aw = q.w.abs();
@@ -289,7 +197,7 @@ pub fn update_link_lanes(
     let theta = V3::select(s2.simd_eq(zero), V3::gather(|_| Vec3::zeros()), qv.scale(factor));
     let tw = n.scale(n.dot(theta));
     let mt = tw.scale(-kt);
-    let mb = theta.sub(tw).scale(-kb);
+    let mb = theta.minus(tw).scale(-kb);
 
     // energy (`spring_energy`, `spring_energy_squared`: zero for a stiffness ≤ 0)
     let fs2 = fs.norm_squared();
@@ -301,9 +209,9 @@ pub fn update_link_lanes(
         + energy(half * mb2, kb);
 
     // loads (`assemble`)
-    let f2 = n.scale(fn_).add(fs);
+    let f2 = n.scale(fn_).plus(fs);
     let lever = n.cross(fs).scale(f64x4::splat(-0.5) * l);
-    let m = mt.add(mb);
+    let m = mt.plus(mb);
 
     // lanes that stay on the path: checked as the scalar law branches
     let (l, one_plus, angle) = (l.to_array(), one_plus.to_array(), angle.to_array());

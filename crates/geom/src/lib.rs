@@ -11,6 +11,7 @@
 //!   lower-dimensional problem and never produce NaN.
 
 mod aabb;
+pub mod lanes;
 mod location;
 mod point_segment;
 mod point_triangle;

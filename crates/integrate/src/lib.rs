@@ -14,6 +14,7 @@ mod energy;
 mod error;
 mod gather;
 mod integrator;
+mod integrator_lanes;
 mod links;
 mod measures;
 mod neighbours;

@@ -1,0 +1,189 @@
+//! Four free particles advanced at once (`flexdem_geom::lanes`: SIMD with nalgebra's formulas
+//! term for term), the leapfrog of `integrator.rs` with the same bits: each lane's velocity,
+//! position and orientation are computed by the same operations in the same order, and the
+//! energy terms, computed four at a time, are added to the sums one by one in the scalar
+//! loop's order (particle by particle, translation then rotation, component by component). A
+//! turn beyond the series of `turn_quaternion` and a product off unit norm by more than the
+//! Newton step's range are made for that lane by the scalar functions.
+
+use crate::integrator::{turn_quaternion, StepWork, SERIES_TURN};
+use flexdem_geom::lanes::{f64x4, Q4, V3};
+use flexdem_geom::{Real, Vec3};
+use nalgebra::{Quaternion, UnitQuaternion};
+
+/// What [`leapfrog_four`] is given besides the particles.
+#[derive(Clone, Copy)]
+pub(crate) struct Kick {
+    pub(crate) gravity: Vec3,
+    pub(crate) lambda: Real,
+    pub(crate) undamped: bool,
+    /// `(dt₀ + dt)/2`.
+    pub(crate) kick: Real,
+    pub(crate) dt: Real,
+}
+
+/// `damped` of `integrator.rs` lane by lane: `a·(1 − λ·sign(a·(v + a·dt/2)))`.
+#[inline(always)]
+fn damped(a: f64x4, v: f64x4, lambda: f64x4, dt: f64x4) -> f64x4 {
+    let (zero, one) = (f64x4::splat(0.0), f64x4::splat(1.0));
+    let s = a * (v + f64x4::splat(0.5) * a * dt);
+    let sign = s.simd_gt(zero).select(one, zero) - s.simd_lt(zero).select(one, zero);
+    a * (one - lambda * sign)
+}
+
+/// One component of the kick of four lanes: the new velocity, the acceleration and the free
+/// one (for the damping's terms).
+#[inline(always)]
+fn kick_component(v0: f64x4, a_free: f64x4, k: &Kick) -> (f64x4, f64x4) {
+    let a = if k.undamped {
+        a_free
+    } else {
+        damped(a_free, v0, f64x4::splat(k.lambda), f64x4::splat(k.kick))
+    };
+    (v0 + a * f64x4::splat(k.kick), a)
+}
+
+/// Advances four particles with no blocked DOF (the caller checks) by one leapfrog step, as
+/// `leapfrog_step` advances each, adding their energy terms to `work` in its order.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn leapfrog_four(
+    pos: &mut [Vec3],
+    vel: &mut [Vec3],
+    ori: &mut [UnitQuaternion<Real>],
+    ang: &mut [Vec3],
+    mass: &[Real],
+    inertia: &[Real],
+    f: &[Vec3],
+    t: &[Vec3],
+    k: &Kick,
+    work: &mut StepWork,
+) {
+    let lanes = |x: &[Real]| f64x4::new([x[0], x[1], x[2], x[3]]);
+    let (m, j) = (lanes(mass), lanes(inertia));
+    let half = f64x4::splat(0.5);
+    let (kick, dt) = (f64x4::splat(k.kick), f64x4::splat(k.dt));
+
+    // translation
+    let inv_mass = f64x4::splat(1.0) / m;
+    let v0 = V3::gather(|l| vel[l]);
+    let force = V3::gather(|l| f[l]);
+    let g = k.gravity;
+    let (vx, ax_free) = (v0.x, force.x * inv_mass + f64x4::splat(g.x));
+    let (vy, ay_free) = (v0.y, force.y * inv_mass + f64x4::splat(g.y));
+    let (vz, az_free) = (v0.z, force.z * inv_mass + f64x4::splat(g.z));
+    let (v1x, ax) = kick_component(vx, ax_free, k);
+    let (v1y, ay) = kick_component(vy, ay_free, k);
+    let (v1z, az) = kick_component(vz, az_free, k);
+    let v1 = V3 { x: v1x, y: v1y, z: v1z };
+    let v0s = [vx, vy, vz];
+    let v1s = [v1x, v1y, v1z];
+    let losses = [ax_free - ax, ay_free - ay, az_free - az];
+    let gs = [g.x, g.y, g.z];
+    // the terms: ½m·v0·v1, m·g·v1·dt, m·(a_free − a)·½·v0·kick and ·v1·kick
+    let kinetic: [[Real; 4]; 3] = std::array::from_fn(|c| (half * m * v0s[c] * v1s[c]).to_array());
+    let gravity: [[Real; 4]; 3] =
+        std::array::from_fn(|c| (m * f64x4::splat(gs[c]) * v1s[c] * dt).to_array());
+    let damping: [[Real; 4]; 3] =
+        std::array::from_fn(|c| (m * losses[c] * half * v0s[c] * kick).to_array());
+    let damping_next: [[Real; 4]; 3] =
+        std::array::from_fn(|c| (m * losses[c] * half * v1s[c] * kick).to_array());
+    let x = V3::gather(|l| pos[l]);
+    let x1 = x.plus(v1.scale(dt));
+
+    // rotation
+    let inv_inertia = f64x4::splat(1.0) / j;
+    let w0 = V3::gather(|l| ang[l]);
+    let torque = V3::gather(|l| t[l]);
+    let (w1x, bx) = kick_component(w0.x, torque.x * inv_inertia, k);
+    let (w1y, by) = kick_component(w0.y, torque.y * inv_inertia, k);
+    let (w1z, bz) = kick_component(w0.z, torque.z * inv_inertia, k);
+    let w0s = [w0.x, w0.y, w0.z];
+    let w1s = [w1x, w1y, w1z];
+    let rot_losses =
+        [torque.x * inv_inertia - bx, torque.y * inv_inertia - by, torque.z * inv_inertia - bz];
+    let kinetic_rot: [[Real; 4]; 3] =
+        std::array::from_fn(|c| (half * j * w0s[c] * w1s[c]).to_array());
+    let rot_damping: [[Real; 4]; 3] =
+        std::array::from_fn(|c| (j * rot_losses[c] * half * w0s[c] * kick).to_array());
+    let rot_damping_next: [[Real; 4]; 3] =
+        std::array::from_fn(|c| (j * rot_losses[c] * half * w1s[c] * kick).to_array());
+    let w1 = V3 { x: w1x, y: w1y, z: w1z };
+
+    // the orientation turned by rot(ω·dt) (`turn_quaternion`, its series), renormalized
+    let turn = w1.scale(dt);
+    let t2 = turn.norm_squared();
+    let y = f64x4::splat(0.25) * t2;
+    let c = |x: Real| f64x4::splat(x);
+    let cos = c(1.0)
+        + y * (c(-1.0 / 2.0)
+            + y * (c(1.0 / 24.0)
+                + y * (c(-1.0 / 720.0)
+                    + y * (c(1.0 / 40_320.0)
+                        + y * (c(-1.0 / 3_628_800.0) + y * c(1.0 / 479_001_600.0))))));
+    let sin_over_x = c(1.0)
+        + y * (c(-1.0 / 6.0)
+            + y * (c(1.0 / 120.0)
+                + y * (c(-1.0 / 5_040.0)
+                    + y * (c(1.0 / 362_880.0)
+                        + y * (c(-1.0 / 39_916_800.0) + y * c(1.0 / 6_227_020_800.0))))));
+    let v = turn.scale(c(0.5) * sin_over_x);
+    let mut tq = Q4 { w: cos, i: v.x, j: v.y, k: v.z };
+    let (t2s, turns) = (t2.to_array(), turn.lanes());
+    if !t2.simd_lt(c(SERIES_TURN * SERIES_TURN)).all() || !t2.simd_ge(c(1e-280)).all() {
+        // (beyond the series or below 1e-140 rad: `turn_quaternion` itself for those lanes)
+        let (mut w, mut i, mut jj, mut kk) =
+            (tq.w.to_array(), tq.i.to_array(), tq.j.to_array(), tq.k.to_array());
+        for l in 0..4 {
+            if !(t2s[l] < SERIES_TURN * SERIES_TURN && t2s[l] >= 1e-280) {
+                let q = turn_quaternion(turns[l]);
+                (w[l], i[l], jj[l], kk[l]) = (q.w, q.i, q.j, q.k);
+            }
+        }
+        tq = Q4 { w: f64x4::new(w), i: f64x4::new(i), j: f64x4::new(jj), k: f64x4::new(kk) };
+    }
+    let q0: [UnitQuaternion<Real>; 4] = [ori[0], ori[1], ori[2], ori[3]];
+    let q = tq.times(Q4 {
+        w: f64x4::new(q0.map(|q| q.w)),
+        i: f64x4::new(q0.map(|q| q.i)),
+        j: f64x4::new(q0.map(|q| q.j)),
+        k: f64x4::new(q0.map(|q| q.k)),
+    });
+    let n2 = q.norm_squared();
+    let q = q.scale(c(1.5) - c(0.5) * n2);
+    let (n2, w, i, jj, kk) =
+        (n2.to_array(), q.w.to_array(), q.i.to_array(), q.j.to_array(), q.k.to_array());
+
+    // written back, and the sums in the scalar loop's order
+    let (v1, x1, w1) = (v1.lanes(), x1.lanes(), w1.lanes());
+    for l in 0..4 {
+        vel[l] = v1[l];
+        for c in 0..3 {
+            work.kinetic_translation += kinetic[c][l];
+            if gs[c] != 0.0 {
+                work.gravity += gravity[c][l];
+            }
+            if !k.undamped {
+                work.damping += damping[c][l];
+                work.damping_next += damping_next[c][l];
+            }
+        }
+        pos[l] = x1[l];
+        ang[l] = w1[l];
+        for c in 0..3 {
+            work.kinetic_rotation += kinetic_rot[c][l];
+            if !k.undamped {
+                work.damping += rot_damping[c][l];
+                work.damping_next += rot_damping_next[c][l];
+            }
+        }
+        if turns[l] != Vec3::zeros() {
+            ori[l] = if (n2[l] - 1.0).abs() < 1e-8 {
+                UnitQuaternion::new_unchecked(Quaternion::new(w[l], i[l], jj[l], kk[l]))
+            } else {
+                // (off unit norm beyond the Newton step: `renormalized`'s exact scaling)
+                let q = turn_quaternion(turns[l]) * q0[l];
+                UnitQuaternion::new_normalize(q.into_inner())
+            };
+        }
+    }
+}
