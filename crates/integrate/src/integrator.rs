@@ -10,66 +10,15 @@
 //! component (0, or an imposed value) and feels neither force nor gravity.
 
 use crate::integrator_lanes::{leapfrog_four, Kick};
+pub use crate::step_work::StepWork;
+pub(crate) use crate::turn::{renormalized, turn_quaternion};
 use flexdem_elements::{Dofs, Particles};
 use flexdem_geom::{Real, Vec3};
-use nalgebra::{Quaternion, UnitQuaternion};
 use rayon::prelude::*;
 
 /// Particles per parallel chunk: fixed, so that reductions (energies) are summed in the same
 /// order whatever the number of threads.
 pub(crate) const CHUNK: usize = 1024;
-
-/// Energy terms of one integration step from `x(t)` to `x(t + dt)`.
-///
-/// The kinetic energy at time t is taken as `½·m·v(t − dt/2)·v(t + dt/2)` (and likewise for
-/// rotation): with it, `kinetic + potential` is exactly conserved by the leapfrog for linear
-/// springs, and to O(dt²) without drift otherwise, whereas `½·m·v(t + dt/2)²` oscillates by
-/// O(ω·dt).
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct StepWork {
-    /// Translational kinetic energy at time t (J).
-    pub kinetic_translation: Real,
-    /// Rotational kinetic energy at time t (J).
-    pub kinetic_rotation: Real,
-    /// Work done by gravity from t to t + dt: `m·g·v(t + dt/2)·dt` over free DOFs (J).
-    pub gravity: Real,
-    /// Energy removed by Cundall damping in the kick at t, the part that the kinetic energy at
-    /// t already shows: `Σ m·(a_free − a)·v(t − dt/2)·h/2` (J). The other half of the kick's
-    /// damping, with v(t + dt/2), shows in the kinetic energy at t + dt: `damping_next`. (With
-    /// the kinetic energy `½m·v(t − dt/2)·v(t + dt/2)`, this split closes the balance at every
-    /// step, where the mean velocity booked at once leaves an offset of half a kick.)
-    pub damping: Real,
-    /// The second half of the kick's damping, `Σ m·(a_free − a)·v(t + dt/2)·h/2` (J).
-    pub damping_next: Real,
-    /// Work of the supports that impose the velocity of blocked DOFs, whose reaction is minus
-    /// the node's force: the half of `−Σ (F·v + τ·ω)` at t over the step before,
-    /// `·dt₀/2` (J; 0 for DOFs held at rest). The force at t works half over the step before
-    /// and half over the step after (the trapezoidal rule, which the kinetic energy
-    /// `½m·v(t − dt/2)·v(t + dt/2)` matches).
-    pub boundary: Real,
-    /// The other half: `−Σ (F·v + τ·ω)·dt/2`, over the step after (J).
-    pub boundary_next: Real,
-    /// Energy dissipated by the contact dashpots' forces at t in the kick at t, the part the
-    /// kinetic energy at t shows: `−Σ F_d·v_rel(t − dt₀/2)·h/2` (J), `h` the kick, as for
-    /// Cundall damping. Not the leapfrog's: the integration stage sets it (model.md §7).
-    pub contact_damping: Real,
-    /// The other half, with the velocities of the kick: `−Σ F_d·v_rel(t + dt/2)·h/2` (J).
-    pub contact_damping_next: Real,
-}
-
-impl std::ops::AddAssign for StepWork {
-    fn add_assign(&mut self, o: Self) {
-        self.kinetic_translation += o.kinetic_translation;
-        self.kinetic_rotation += o.kinetic_rotation;
-        self.gravity += o.gravity;
-        self.damping += o.damping;
-        self.damping_next += o.damping_next;
-        self.boundary += o.boundary;
-        self.boundary_next += o.boundary_next;
-        self.contact_damping += o.contact_damping;
-        self.contact_damping_next += o.contact_damping_next;
-    }
-}
 
 /// `aᵢ·(1 − λ·sign(aᵢ·(vᵢ + aᵢ·dt/2)))` (Cundall's non-viscous damping of one component),
 /// without a branch: the sign's direction is as good as random from one DOF to the next, and
@@ -80,60 +29,6 @@ fn damped(a: Real, v: Real, lambda: Real, dt: Real) -> Real {
     let s = a * (v + 0.5 * a * dt);
     let sign = Real::from(u8::from(s > 0.0)) - Real::from(u8::from(s < 0.0));
     a * (1.0 - lambda * sign)
-}
-
-/// Below this angle [`turn_quaternion`] sums series: a step's turn almost always is smaller
-/// (nodes of an impacted tube turn by up to about 1e-2 per step), and the branch is then
-/// never mispredicted.
-pub(crate) const SERIES_TURN: Real = 0.2;
-
-/// The unit quaternion of the rotation vector `turn` (angle θ = |turn| about turn/θ):
-/// (cos(θ/2), sin(θ/2)·turn/θ). Below θ = 0.2 by the series of cos x and sin x/x in
-/// y = x² = θ²/4 through y⁶ (the first terms left out, y⁷/14! and y⁷/15!, are below 2e-25
-/// there), with no square root and no `sin_cos`; above, nalgebra's `from_scaled_axis`. Equal
-/// to it to round-off at every angle, except that a turn below 1e-140 rad is none.
-#[inline]
-pub(crate) fn turn_quaternion(turn: Vec3) -> UnitQuaternion<Real> {
-    let t2 = turn.norm_squared();
-    if t2 >= SERIES_TURN * SERIES_TURN {
-        return UnitQuaternion::from_scaled_axis(turn);
-    }
-    if t2 < 1e-280 {
-        // a turn below 1e-140 rad is none: it would only seed the orientation with numbers
-        // whose products are subnormal, slow to compute with (in the links' quaternion
-        // products too: the tube impact's integration took 0.0135 ms/step with them, 0.0078
-        // without, where a wave ahead of its front leaves such turns)
-        return UnitQuaternion::identity();
-    }
-    let y = 0.25 * t2;
-    let cos = 1.0
-        + y * (-1.0 / 2.0
-            + y * (1.0 / 24.0
-                + y * (-1.0 / 720.0
-                    + y * (1.0 / 40_320.0
-                        + y * (-1.0 / 3_628_800.0 + y * (1.0 / 479_001_600.0))))));
-    let sin_over_x = 1.0
-        + y * (-1.0 / 6.0
-            + y * (1.0 / 120.0
-                + y * (-1.0 / 5_040.0
-                    + y * (1.0 / 362_880.0
-                        + y * (-1.0 / 39_916_800.0 + y * (1.0 / 6_227_020_800.0))))));
-    // sin x · axis = (sin x / x)·x·turn/θ = (sin x / x)·turn/2
-    let v = turn * (0.5 * sin_over_x);
-    UnitQuaternion::new_unchecked(Quaternion::new(cos, v.x, v.y, v.z))
-}
-
-/// `q` scaled to unit norm. A product of unit quaternions is off by round-off only: where
-/// |q|² = 1 + ε with |ε| < 1e-8, by 1 − ε/2 = 1.5 − |q|²/2 (Newton's step for 1/√(1 + ε),
-/// whose error 3ε²/8 is below round-off), with no square root and no division; else exactly.
-#[inline]
-pub(crate) fn renormalized(q: Quaternion<Real>) -> UnitQuaternion<Real> {
-    let n2 = q.norm_squared();
-    if (n2 - 1.0).abs() < 1e-8 {
-        UnitQuaternion::new_unchecked(q * (1.5 - 0.5 * n2))
-    } else {
-        UnitQuaternion::new_normalize(q)
-    }
 }
 
 /// What a leapfrog step is given besides the particles and their loads.
@@ -313,6 +208,7 @@ pub fn kinetic_energy(p: &Particles) -> (Real, Real) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use nalgebra::{Quaternion, UnitQuaternion};
     use proptest::prelude::*;
 
     proptest! {

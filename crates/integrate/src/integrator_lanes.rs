@@ -6,7 +6,8 @@
 //! turn beyond the series of `turn_quaternion` and a product off unit norm by more than the
 //! Newton step's range are made for that lane by the scalar functions.
 
-use crate::integrator::{turn_quaternion, StepWork, SERIES_TURN};
+use crate::step_work::StepWork;
+use crate::turn::{turn_quaternion, SERIES_TURN};
 use flexdem_geom::lanes::{f64x4, Q4, V3};
 use flexdem_geom::{Real, Vec3};
 use nalgebra::{Quaternion, UnitQuaternion};

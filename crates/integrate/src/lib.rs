@@ -32,9 +32,11 @@ mod settings;
 mod simulation;
 mod stages;
 mod state;
+mod step_work;
 mod time_step;
 mod timers;
 mod touchings;
+mod turn;
 
 pub use broad_phase::BroadPhase;
 pub use collider::Collider;

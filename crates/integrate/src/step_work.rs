@@ -1,0 +1,56 @@
+//! The energy terms of a leapfrog step (`integrator.rs`, and its four-particle lanes,
+//! `integrator_lanes.rs`).
+
+use flexdem_geom::Real;
+
+/// Energy terms of one integration step from `x(t)` to `x(t + dt)`.
+///
+/// The kinetic energy at time t is taken as `½·m·v(t − dt/2)·v(t + dt/2)` (and likewise for
+/// rotation): with it, `kinetic + potential` is exactly conserved by the leapfrog for linear
+/// springs, and to O(dt²) without drift otherwise, whereas `½·m·v(t + dt/2)²` oscillates by
+/// O(ω·dt).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct StepWork {
+    /// Translational kinetic energy at time t (J).
+    pub kinetic_translation: Real,
+    /// Rotational kinetic energy at time t (J).
+    pub kinetic_rotation: Real,
+    /// Work done by gravity from t to t + dt: `m·g·v(t + dt/2)·dt` over free DOFs (J).
+    pub gravity: Real,
+    /// Energy removed by Cundall damping in the kick at t, the part that the kinetic energy at
+    /// t already shows: `Σ m·(a_free − a)·v(t − dt/2)·h/2` (J). The other half of the kick's
+    /// damping, with v(t + dt/2), shows in the kinetic energy at t + dt: `damping_next`. (With
+    /// the kinetic energy `½m·v(t − dt/2)·v(t + dt/2)`, this split closes the balance at every
+    /// step, where the mean velocity booked at once leaves an offset of half a kick.)
+    pub damping: Real,
+    /// The second half of the kick's damping, `Σ m·(a_free − a)·v(t + dt/2)·h/2` (J).
+    pub damping_next: Real,
+    /// Work of the supports that impose the velocity of blocked DOFs, whose reaction is minus
+    /// the node's force: the half of `−Σ (F·v + τ·ω)` at t over the step before,
+    /// `·dt₀/2` (J; 0 for DOFs held at rest). The force at t works half over the step before
+    /// and half over the step after (the trapezoidal rule, which the kinetic energy
+    /// `½m·v(t − dt/2)·v(t + dt/2)` matches).
+    pub boundary: Real,
+    /// The other half: `−Σ (F·v + τ·ω)·dt/2`, over the step after (J).
+    pub boundary_next: Real,
+    /// Energy dissipated by the contact dashpots' forces at t in the kick at t, the part the
+    /// kinetic energy at t shows: `−Σ F_d·v_rel(t − dt₀/2)·h/2` (J), `h` the kick, as for
+    /// Cundall damping. Not the leapfrog's: the integration stage sets it (model.md §7).
+    pub contact_damping: Real,
+    /// The other half, with the velocities of the kick: `−Σ F_d·v_rel(t + dt/2)·h/2` (J).
+    pub contact_damping_next: Real,
+}
+
+impl std::ops::AddAssign for StepWork {
+    fn add_assign(&mut self, o: Self) {
+        self.kinetic_translation += o.kinetic_translation;
+        self.kinetic_rotation += o.kinetic_rotation;
+        self.gravity += o.gravity;
+        self.damping += o.damping;
+        self.damping_next += o.damping_next;
+        self.boundary += o.boundary;
+        self.boundary_next += o.boundary_next;
+        self.contact_damping += o.contact_damping;
+        self.contact_damping_next += o.contact_damping_next;
+    }
+}
