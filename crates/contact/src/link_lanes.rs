@@ -16,7 +16,9 @@
 
 use crate::link::{LinkClass, LinkSpring, LinkState, LinkStatus};
 use crate::material::FailureMode;
-use crate::rotation::{ATAN_SERIES_BELOW, SMALL_ANGLE};
+use crate::rotation::{
+    atan_over_x_series, sin_one_minus_cos_series, ATAN_SERIES_BELOW, SMALL_ANGLE,
+};
 use crate::LinkKinematicsMode;
 use flexdem_geom::lanes::{f64x4, Q4, V3};
 use flexdem_geom::{Real, Vec3};
@@ -107,10 +109,7 @@ pub fn update_link_lanes(
     let one_plus = one + a.dot(n);
     let s = a.plus(n);
     let swung = v.minus(s.scale(s.dot(v) / one_plus)).plus(n.scale(f64x4::splat(2.0) * a.dot(v)));
-    let a2 = angle * angle;
-    let sin = angle * (one - a2 * f64x4::splat(1.0 / 6.0) * (one - a2 * f64x4::splat(1.0 / 20.0)));
-    let omc =
-        half * a2 * (one - a2 * f64x4::splat(1.0 / 12.0) * (one - a2 * f64x4::splat(1.0 / 30.0)));
+    let (sin, omc) = sin_one_minus_cos_series(angle, f64x4::splat);
     // (a turn beyond the series, |ψ| ≥ 5e-3: libm's `sin_cos` for that lane, as the scalar
     // law takes it)
     let (sin, omc) = if angle.abs().simd_lt(f64x4::splat(SMALL_ANGLE)).all() {
@@ -172,10 +171,7 @@ pub fn update_link_lanes(
     let limit = f64x4::splat(ATAN_SERIES_BELOW) * aw;
     let inv_w = one / aw;
     let y = s2 * inv_w * inv_w;
-    let series = one
-        + y * (f64x4::splat(-1.0 / 3.0)
-            + y * (f64x4::splat(1.0 / 5.0)
-                + y * (f64x4::splat(-1.0 / 7.0) + y * f64x4::splat(1.0 / 9.0))));
+    let series = atan_over_x_series(y, f64x4::splat);
     let factor = f64x4::splat(2.0) * inv_w * series;
     let sign = q.w & f64x4::splat(-0.0);
     let factor = factor.abs() | sign;

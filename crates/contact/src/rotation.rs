@@ -6,6 +6,7 @@
 
 use flexdem_geom::{Real, Vec3};
 use nalgebra::UnitQuaternion;
+use std::ops::{Add, Mul, Sub};
 
 /// Rotates `v` by `angle` about the unit `axis` (Rodrigues):
 /// v' = v cosψ + (a×v) sinψ + a(a·v)(1 − cosψ).
@@ -25,14 +26,25 @@ pub(crate) const SMALL_ANGLE: Real = 5e-3;
 #[inline]
 pub fn sin_one_minus_cos(angle: Real) -> (Real, Real) {
     if angle.abs() < SMALL_ANGLE {
-        let a2 = angle * angle;
-        let s = angle * (1.0 - a2 * (1.0 / 6.0) * (1.0 - a2 * (1.0 / 20.0)));
-        let omc = 0.5 * a2 * (1.0 - a2 * (1.0 / 12.0) * (1.0 - a2 * (1.0 / 30.0)));
-        (s, omc)
+        sin_one_minus_cos_series(angle, |x| x)
     } else {
         let (s, c) = angle.sin_cos();
         (s, 1.0 - c)
     }
+}
+
+/// The series of [`sin_one_minus_cos`] for any number type with +, − and ×, `c` making its
+/// constants: the four links' lanes (`link_lanes.rs`, on `f64x4`) take the same operations
+/// in the same order, so the same bits per lane.
+#[inline(always)]
+pub(crate) fn sin_one_minus_cos_series<T>(angle: T, c: impl Fn(Real) -> T) -> (T, T)
+where
+    T: Copy + Add<Output = T> + Sub<Output = T> + Mul<Output = T>,
+{
+    let a2 = angle * angle;
+    let s = angle * (c(1.0) - a2 * c(1.0 / 6.0) * (c(1.0) - a2 * c(1.0 / 20.0)));
+    let omc = c(0.5) * a2 * (c(1.0) - a2 * c(1.0 / 12.0) * (c(1.0) - a2 * c(1.0 / 30.0)));
+    (s, omc)
 }
 
 /// Below this x, atan(x)/x is summed as a series: the first omitted term, x¹⁰/11, is below
@@ -40,16 +52,19 @@ pub fn sin_one_minus_cos(angle: Real) -> (Real, Real) {
 pub(crate) const ATAN_SERIES_BELOW: Real = 0.03;
 
 /// atan(x)/x from y = x² for x < [`ATAN_SERIES_BELOW`]: 1 − y/3 + y²/5 − y³/7 + y⁴/9.
-#[inline]
-fn atan_over_x_series(y: Real) -> Real {
-    1.0 + y * (-1.0 / 3.0 + y * (1.0 / 5.0 + y * (-1.0 / 7.0 + y * (1.0 / 9.0))))
+#[inline(always)]
+pub(crate) fn atan_over_x_series<T>(y: T, c: impl Fn(Real) -> T) -> T
+where
+    T: Copy + Add<Output = T> + Mul<Output = T>,
+{
+    c(1.0) + y * (c(-1.0 / 3.0) + y * (c(1.0 / 5.0) + y * (c(-1.0 / 7.0) + y * c(1.0 / 9.0))))
 }
 
 /// atan(x) for x ≥ 0: x·[`atan_over_x_series`] below 0.03, else libm's `atan`.
 #[cfg(test)]
 fn atan_non_negative(x: Real) -> Real {
     if x < ATAN_SERIES_BELOW {
-        x * atan_over_x_series(x * x)
+        x * atan_over_x_series(x * x, |x| x)
     } else {
         x.atan()
     }
@@ -125,7 +140,7 @@ pub fn rotation_vector(q: &UnitQuaternion<Real>) -> Vec3 {
     if s2 < limit * limit {
         let inv_w = 1.0 / aw;
         let y = s2 * inv_w * inv_w;
-        return v * (2.0 * inv_w * atan_over_x_series(y)).copysign(w);
+        return v * (2.0 * inv_w * atan_over_x_series(y, |x| x)).copysign(w);
     }
     let s = s2.sqrt();
     v * ((2.0 * s.atan2(aw)).copysign(w) / s)

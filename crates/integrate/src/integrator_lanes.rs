@@ -7,7 +7,7 @@
 //! Newton step's range are made for that lane by the scalar functions.
 
 use crate::step_work::StepWork;
-use crate::turn::{turn_quaternion, SERIES_TURN};
+use crate::turn::{half_turn_series, turn_quaternion, SERIES_TURN};
 use flexdem_geom::lanes::{f64x4, Q4, V3};
 use flexdem_geom::{Real, Vec3};
 use nalgebra::{Quaternion, UnitQuaternion};
@@ -113,20 +113,8 @@ pub(crate) fn leapfrog_four(
     // the orientation turned by rot(ω·dt) (`turn_quaternion`, its series), renormalized
     let turn = w1.scale(dt);
     let t2 = turn.norm_squared();
-    let y = f64x4::splat(0.25) * t2;
     let c = |x: Real| f64x4::splat(x);
-    let cos = c(1.0)
-        + y * (c(-1.0 / 2.0)
-            + y * (c(1.0 / 24.0)
-                + y * (c(-1.0 / 720.0)
-                    + y * (c(1.0 / 40_320.0)
-                        + y * (c(-1.0 / 3_628_800.0) + y * c(1.0 / 479_001_600.0))))));
-    let sin_over_x = c(1.0)
-        + y * (c(-1.0 / 6.0)
-            + y * (c(1.0 / 120.0)
-                + y * (c(-1.0 / 5_040.0)
-                    + y * (c(1.0 / 362_880.0)
-                        + y * (c(-1.0 / 39_916_800.0) + y * c(1.0 / 6_227_020_800.0))))));
+    let (cos, sin_over_x) = half_turn_series(c(0.25) * t2, c);
     let v = turn.scale(c(0.5) * sin_over_x);
     let mut tq = Q4 { w: cos, i: v.x, j: v.y, k: v.z };
     let (t2s, turns) = (t2.to_array(), turn.lanes());

@@ -3,6 +3,7 @@
 
 use flexdem_geom::{Real, Vec3};
 use nalgebra::{Quaternion, UnitQuaternion};
+use std::ops::{Add, Mul};
 
 /// Below this angle [`turn_quaternion`] sums series: a step's turn almost always is smaller
 /// (nodes of an impacted tube turn by up to about 1e-2 per step), and the branch is then
@@ -27,22 +28,34 @@ pub(crate) fn turn_quaternion(turn: Vec3) -> UnitQuaternion<Real> {
         // without, where a wave ahead of its front leaves such turns)
         return UnitQuaternion::identity();
     }
-    let y = 0.25 * t2;
-    let cos = 1.0
-        + y * (-1.0 / 2.0
-            + y * (1.0 / 24.0
-                + y * (-1.0 / 720.0
-                    + y * (1.0 / 40_320.0
-                        + y * (-1.0 / 3_628_800.0 + y * (1.0 / 479_001_600.0))))));
-    let sin_over_x = 1.0
-        + y * (-1.0 / 6.0
-            + y * (1.0 / 120.0
-                + y * (-1.0 / 5_040.0
-                    + y * (1.0 / 362_880.0
-                        + y * (-1.0 / 39_916_800.0 + y * (1.0 / 6_227_020_800.0))))));
+    let (cos, sin_over_x) = half_turn_series(0.25 * t2, |x| x);
     // sin x · axis = (sin x / x)·x·turn/θ = (sin x / x)·turn/2
     let v = turn * (0.5 * sin_over_x);
     UnitQuaternion::new_unchecked(Quaternion::new(cos, v.x, v.y, v.z))
+}
+
+/// cos x and sin x / x from y = x², by their series through y⁶ ([`turn_quaternion`]'s), for
+/// any number type with + and ×, `c` making its constants: the four particles' lanes
+/// (`integrator_lanes.rs`, on `f64x4`) take the same operations in the same order, so the
+/// same bits per lane.
+#[inline(always)]
+pub(crate) fn half_turn_series<T>(y: T, c: impl Fn(Real) -> T) -> (T, T)
+where
+    T: Copy + Add<Output = T> + Mul<Output = T>,
+{
+    let cos = c(1.0)
+        + y * (c(-1.0 / 2.0)
+            + y * (c(1.0 / 24.0)
+                + y * (c(-1.0 / 720.0)
+                    + y * (c(1.0 / 40_320.0)
+                        + y * (c(-1.0 / 3_628_800.0) + y * c(1.0 / 479_001_600.0))))));
+    let sin_over_x = c(1.0)
+        + y * (c(-1.0 / 6.0)
+            + y * (c(1.0 / 120.0)
+                + y * (c(-1.0 / 5_040.0)
+                    + y * (c(1.0 / 362_880.0)
+                        + y * (c(-1.0 / 39_916_800.0) + y * c(1.0 / 6_227_020_800.0))))));
+    (cos, sin_over_x)
 }
 
 /// `q` scaled to unit norm. A product of unit quaternions is off by round-off only: where
