@@ -3,7 +3,8 @@
 //!
 //! Exit codes: 0 success, 1 the run failed (an unstable run, an output file that cannot be
 //! written), 2 bad input (scene file, checkpoint, command-line arguments), 130 interrupted by
-//! Ctrl-C (a checkpoint was written).
+//! Ctrl-C (a checkpoint was written), 3 this machine lacks instructions the binary was compiled
+//! for (a binary built on another machine, `flexdem_run::cpu`).
 
 mod cli;
 mod commands;
@@ -22,6 +23,19 @@ use error::Outcome;
 static ALLOCATOR: cap::Cap<std::alloc::System> = cap::Cap::new(std::alloc::System, usize::MAX);
 
 fn main() {
+    // before any code compiled for this CPU's extensions runs (see `flexdem_run::cpu`)
+    if let Some(message) =
+        flexdem_run::cpu::unsupported_message(&flexdem_run::cpu::unsupported_features())
+    {
+        eprintln!("error: {message}");
+        std::process::exit(3);
+    }
+    run_command()
+}
+
+/// The command line's work, once the CPU is known to run it.
+#[inline(never)]
+fn run_command() {
     flexdem_bench::set_heap_probe(|| ALLOCATOR.allocated());
     let cli = Cli::parse();
     let result = match cli.command {

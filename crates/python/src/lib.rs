@@ -60,6 +60,11 @@ fn scene_dict(py: Python<'_>, path: std::path::PathBuf) -> PyResult<Bound<'_, Py
 #[pymodule]
 #[pyo3(name = "flexdem")]
 fn flexdem_python(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    // before any code compiled for this CPU's extensions runs (see `flexdem_run::cpu`)
+    let missing = flexdem_run::cpu::unsupported_features();
+    if let Some(message) = flexdem_run::cpu::unsupported_message(&missing) {
+        return Err(pyo3::exceptions::PyImportError::new_err(message));
+    }
     let py = m.py();
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add_class::<simulation::PySimulation>()?;

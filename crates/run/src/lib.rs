@@ -16,6 +16,7 @@
 //! so the scene file is not read again), the run length and how far the output got.
 
 mod build;
+pub mod cpu;
 mod driver;
 mod error;
 mod observer;
