@@ -387,6 +387,28 @@ pub(crate) fn apart(p: &Particles, key: &ContactKey) -> bool {
     }
 }
 
+/// The hot case of [`step_pair`], a sphere–sphere contact that goes on: its law, and its
+/// two node loads (`law` as `step_pair` fills it); None where `step_pair` has to decide (not
+/// two spheres, not touching before, apart now, centres crossed). One distance, and no
+/// candidate, sites or owners: the general path computes the same numbers (`Candidate`'s
+/// overlap is r₁ + r₂ − |c₂ − c₁| too, and it then calls `sphere_geometry` alike). Nothing
+/// of [`PairOutcome`] but its loads: a pair that goes on adds nothing to the births and ends.
+#[inline(always)]
+pub(crate) fn continuing_spheres(
+    p: &Particles,
+    key: &ContactKey,
+    slot: &u32,
+    block: &mut BlockContacts<PairContact>,
+    dt: Real,
+    law: &mut LawOut,
+) -> Option<[NodeLoad; 2]> {
+    let (Feature::Particle(i), Feature::Particle(j)) = *key else { return None };
+    let c = block.get_mut(*slot)?;
+    let (i, j) = (i as usize, j as usize);
+    let g = sphere_geometry(p, i, j, &c.state.normal).filter(|g| g.overlap > 0.0)?;
+    Some(apply_law(c, &g, [i as u32, j as u32], [p.pos[i], p.pos[j]], dt, law))
+}
+
 /// One pair's step (see [`NeighbourList::update`]): `slot` is its index into `block`, the
 /// contacts of its block of candidates (see `pair_store.rs`); what the law gave a pair that
 /// touches after it goes to `law`.
@@ -401,17 +423,9 @@ pub(crate) fn step_pair(
     out: &mut PairOutcome,
     law: &mut LawOut,
 ) {
-    // the hot case, a sphere–sphere contact that goes on: one distance, and no candidate,
-    // sites or owners (the general path below computes the same numbers: `Candidate`'s
-    // overlap is r₁ + r₂ − |c₂ − c₁| too, and it then calls `sphere_geometry` alike)
-    if let ((Feature::Particle(i), Feature::Particle(j)), Some(c)) = (*key, block.get_mut(*slot)) {
-        let p = &model.particles;
-        let (i, j) = (i as usize, j as usize);
-        if let Some(g) = sphere_geometry(p, i, j, &c.state.normal).filter(|g| g.overlap > 0.0) {
-            let nodes = [i as u32, j as u32];
-            out.loads = apply_law(c, &g, nodes, [p.pos[i], p.pos[j]], dt, law);
-            return;
-        }
+    if let Some(loads) = continuing_spheres(&model.particles, key, slot, block, dt, law) {
+        out.loads = loads;
+        return;
     }
     let touching = match *key {
         (Feature::Particle(i), Feature::Particle(j)) => {

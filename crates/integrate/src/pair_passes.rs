@@ -6,7 +6,9 @@
 
 use crate::contact::BirthReport;
 use crate::dashpots::pair_dashpot_power;
-use crate::neighbours::{apart, step_pair, LawOut, NeighbourList, PairContact, PairOutcome, Sink};
+use crate::neighbours::{
+    apart, continuing_spheres, step_pair, LawOut, NeighbourList, PairContact, PairOutcome, Sink,
+};
 use crate::pair_keys::key_at;
 use crate::pair_store::{BLOCK, NO_CONTACT};
 use flexdem_elements::virtual_sphere::{Feature, Kinematics, NodeLoad};
@@ -109,8 +111,14 @@ pub(crate) struct PairLoads {
 impl PairLoads {
     /// The loads of an outcome (`step_pair`'s: body 1's force is −body 2's, exactly).
     fn of(o: &PairOutcome) -> Self {
-        debug_assert_eq!(o.loads[0].force, -o.loads[1].force);
-        PairLoads { force_on_2: o.loads[1].force, torques: [o.loads[0].torque, o.loads[1].torque] }
+        Self::of_loads(&o.loads)
+    }
+
+    /// The loads of a pair's two node loads (body 1's force is −body 2's, exactly).
+    #[inline]
+    fn of_loads(loads: &[NodeLoad; 2]) -> Self {
+        debug_assert_eq!(loads[0].force, -loads[1].force);
+        PairLoads { force_on_2: loads[1].force, torques: [loads[0].torque, loads[1].torque] }
     }
 
     /// Body `side`'s load (0: body 1, 1: body 2) on node `node`.
@@ -152,8 +160,17 @@ impl ChunkBook {
             self.fresh.push(n);
         }
         if let Some(c) = contact {
-            self.sums.add_touching(c, law.elastic);
-            self.pushed.extend(Pushed::of(n, law));
+            self.record_continuing(n, c, law);
+        }
+    }
+
+    /// Books the step of pair `n`, a contact `c` that went on (its outcome adds +0 to the
+    /// births' and ends' sums, which start at +0 and never reach −0: nothing to add).
+    #[inline]
+    fn record_continuing(&mut self, n: usize, c: &PairContact, law: &LawOut) {
+        self.sums.add_touching(c, law.elastic);
+        if let Some(pushed) = Pushed::of(n, law) {
+            self.pushed.push(pushed);
         }
     }
 }
@@ -260,8 +277,15 @@ impl NeighbourList {
                         continue;
                     }
                     let block = &mut blocks[i / BLOCK];
-                    let mut o = PairOutcome::default();
                     let mut law = LawOut::default();
+                    if let Some(loads) = continuing_spheres(p, key, slot, block, dt, &mut law) {
+                        let c = block.get(*slot).expect("a contact that goes on");
+                        out.book.record_continuing(base + i, c, &law);
+                        positions[i] = out.outcomes.len() as u32;
+                        out.outcomes.push(((base + i) as u32, PairLoads::of_loads(&loads)));
+                        continue;
+                    }
+                    let mut o = PairOutcome::default();
                     step_pair(model, &k, key, slot, block, dt, &mut o, &mut law);
                     out.book.record(base + i, &o, block.get(*slot), &law);
                     if *slot != NO_CONTACT {
@@ -300,8 +324,15 @@ impl NeighbourList {
             }
             let block = &mut self.blocks[n / BLOCK];
             let out = &mut chunks[n / PAIR_CHUNK];
-            let mut o = PairOutcome::default();
             let mut law = LawOut::default();
+            if let Some(loads) = continuing_spheres(p, key, slot, block, dt, &mut law) {
+                let c = block.get(*slot).expect("a contact that goes on");
+                out.book.record_continuing(n, c, &law);
+                sink(Sink::Before(key));
+                loads.iter().for_each(|l| sink(Sink::Load(l)));
+                continue;
+            }
+            let mut o = PairOutcome::default();
             step_pair(model, &k, key, slot, block, dt, &mut o, &mut law);
             out.book.record(n, &o, block.get(*slot), &law);
             if *slot != NO_CONTACT {
