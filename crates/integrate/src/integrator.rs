@@ -9,7 +9,7 @@
 //! damped as `aᵢ ← aᵢ·(1 − λ·sign(aᵢ·(vᵢ + aᵢ·dt/2)))`. A blocked DOF keeps its velocity
 //! component (0, or an imposed value) and feels neither force nor gravity.
 
-use crate::integrator_lanes::{leapfrog_four, Kick};
+use crate::integrator_lanes::{leapfrog_four, Chunk, Kick};
 pub use crate::step_work::StepWork;
 pub(crate) use crate::turn::{renormalized, turn_quaternion};
 use flexdem_elements::{Dofs, Particles};
@@ -92,88 +92,27 @@ fn leapfrog_step_lanes(
         .map(|(pos, vel, ori, ang, mass, inertia, blocked, f, t)| {
             let mut work = StepWork::default();
             let lanes = Kick { gravity: *gravity, lambda, undamped, kick, dt };
-            let mut i = 0;
-            while i < pos.len() {
-                // four free particles at once (`integrator_lanes.rs`: the same bits)
-                if four && i + 4 <= pos.len() && blocked[i..i + 4].iter().all(|&b| b == Dofs::NONE)
-                {
-                    let r = i..i + 4;
-                    leapfrog_four(
-                        &mut pos[r.clone()],
-                        &mut vel[r.clone()],
-                        &mut ori[r.clone()],
-                        &mut ang[r.clone()],
-                        &mass[r.clone()],
-                        &inertia[r.clone()],
-                        &f[r.clone()],
-                        &t[r],
-                        &lanes,
-                        &mut work,
-                    );
-                    i += 4;
+            let mut p = Chunk { pos, vel, ori, ang, mass, inertia, f, t };
+            // the free particles four at a time (`integrator_lanes.rs`: the same bits), in
+            // order with the others: a particle with a blocked DOF, or a free one left alone,
+            // goes the scalar way after the free ones before it
+            let mut free = [0usize; 4];
+            let mut count = 0;
+            for i in 0..blocked.len() {
+                if four && blocked[i] == Dofs::NONE {
+                    free[count] = i;
+                    count += 1;
+                    if count == 4 {
+                        leapfrog_four(&mut p, free, 4, &lanes, &mut work);
+                        count = 0;
+                    }
                     continue;
                 }
-                let b = blocked[i];
-                // one division per particle, not one per DOF
-                let inv_mass = 1.0 / mass[i];
-                for k in 0..3 {
-                    if b.contains(Dofs::translation(k)) {
-                        continue;
-                    }
-                    let v0 = vel[i][k];
-                    let a_free = f[i][k] * inv_mass + gravity[k];
-                    let a = if undamped { a_free } else { damped(a_free, v0, lambda, kick) };
-                    let v1 = v0 + a * kick;
-                    vel[i][k] = v1;
-                    work.kinetic_translation += 0.5 * mass[i] * v0 * v1;
-                    if gravity[k] != 0.0 {
-                        work.gravity += mass[i] * gravity[k] * v1 * dt;
-                    }
-                    if !undamped {
-                        work.damping += mass[i] * (a_free - a) * 0.5 * v0 * kick;
-                        work.damping_next += mass[i] * (a_free - a) * 0.5 * v1 * kick;
-                    }
-                }
-                for k in 0..3 {
-                    if b.contains(Dofs::translation(k)) {
-                        work.kinetic_translation += 0.5 * mass[i] * vel[i][k] * vel[i][k];
-                        work.boundary -= 0.5 * f[i][k] * vel[i][k] * previous;
-                        work.boundary_next -= 0.5 * f[i][k] * vel[i][k] * dt;
-                    }
-                }
-                pos[i] += vel[i] * dt;
-                if !b.contains(Dofs::ROTATION) || ang[i] != Vec3::zeros() {
-                    let inv_inertia = 1.0 / inertia[i];
-                    for k in 0..3 {
-                        if b.contains(Dofs::rotation(k)) {
-                            continue;
-                        }
-                        let w0 = ang[i][k];
-                        let a_free = t[i][k] * inv_inertia;
-                        let a = if undamped { a_free } else { damped(a_free, w0, lambda, kick) };
-                        let w1 = w0 + a * kick;
-                        ang[i][k] = w1;
-                        work.kinetic_rotation += 0.5 * inertia[i] * w0 * w1;
-                        if !undamped {
-                            work.damping += inertia[i] * (a_free - a) * 0.5 * w0 * kick;
-                            work.damping_next += inertia[i] * (a_free - a) * 0.5 * w1 * kick;
-                        }
-                    }
-                    for k in 0..3 {
-                        if b.contains(Dofs::rotation(k)) {
-                            work.kinetic_rotation += 0.5 * inertia[i] * ang[i][k] * ang[i][k];
-                            work.boundary -= 0.5 * t[i][k] * ang[i][k] * previous;
-                            work.boundary_next -= 0.5 * t[i][k] * ang[i][k] * dt;
-                        }
-                    }
-                    let turn = ang[i] * dt;
-                    if turn != Vec3::zeros() {
-                        let q = turn_quaternion(turn) * ori[i];
-                        ori[i] = renormalized(q.into_inner());
-                    }
-                }
-                i += 1;
+                flush_free(&mut p, &free[..count], &lanes, previous, &mut work);
+                count = 0;
+                leapfrog_one(&mut p, i, blocked[i], &lanes, previous, &mut work);
             }
+            flush_free(&mut p, &free[..count], &lanes, previous, &mut work);
             work
         })
         .collect_into_vec(parts);
@@ -182,6 +121,93 @@ fn leapfrog_step_lanes(
         total += *w;
     }
     total
+}
+
+/// The free particles `free` of chunk `p` (fewer than four, in order): two or more through
+/// the lanes (the others repeated), one alone the scalar way.
+fn flush_free(p: &mut Chunk<'_>, free: &[usize], k: &Kick, previous: Real, work: &mut StepWork) {
+    match *free {
+        [] => {}
+        [i] => leapfrog_one(p, i, Dofs::NONE, k, previous, work),
+        _ => {
+            let last = free[free.len() - 1];
+            let idx = std::array::from_fn(|l| free.get(l).copied().unwrap_or(last));
+            leapfrog_four(p, idx, free.len(), k, work);
+        }
+    }
+}
+
+/// Advances particle `i` of chunk `p` (its blocked DOFs `b`) by one leapfrog step, adding its
+/// energy terms to `work` (`previous` is dt₀, for the supports' work).
+fn leapfrog_one(
+    p: &mut Chunk<'_>,
+    i: usize,
+    b: Dofs,
+    step: &Kick,
+    previous: Real,
+    work: &mut StepWork,
+) {
+    let Chunk { pos, vel, ori, ang, mass, inertia, f, t } = p;
+    let Kick { gravity, lambda, undamped, kick, dt } = *step;
+    let gravity = &gravity;
+    // one division per particle, not one per DOF
+    let inv_mass = 1.0 / mass[i];
+    for k in 0..3 {
+        if b.contains(Dofs::translation(k)) {
+            continue;
+        }
+        let v0 = vel[i][k];
+        let a_free = f[i][k] * inv_mass + gravity[k];
+        let a = if undamped { a_free } else { damped(a_free, v0, lambda, kick) };
+        let v1 = v0 + a * kick;
+        vel[i][k] = v1;
+        work.kinetic_translation += 0.5 * mass[i] * v0 * v1;
+        if gravity[k] != 0.0 {
+            work.gravity += mass[i] * gravity[k] * v1 * dt;
+        }
+        if !undamped {
+            work.damping += mass[i] * (a_free - a) * 0.5 * v0 * kick;
+            work.damping_next += mass[i] * (a_free - a) * 0.5 * v1 * kick;
+        }
+    }
+    for k in 0..3 {
+        if b.contains(Dofs::translation(k)) {
+            work.kinetic_translation += 0.5 * mass[i] * vel[i][k] * vel[i][k];
+            work.boundary -= 0.5 * f[i][k] * vel[i][k] * previous;
+            work.boundary_next -= 0.5 * f[i][k] * vel[i][k] * dt;
+        }
+    }
+    pos[i] += vel[i] * dt;
+    if !b.contains(Dofs::ROTATION) || ang[i] != Vec3::zeros() {
+        let inv_inertia = 1.0 / inertia[i];
+        for k in 0..3 {
+            if b.contains(Dofs::rotation(k)) {
+                continue;
+            }
+            let w0 = ang[i][k];
+            let a_free = t[i][k] * inv_inertia;
+            let a = if undamped { a_free } else { damped(a_free, w0, lambda, kick) };
+            let w1 = w0 + a * kick;
+            ang[i][k] = w1;
+            work.kinetic_rotation += 0.5 * inertia[i] * w0 * w1;
+            if !undamped {
+                work.damping += inertia[i] * (a_free - a) * 0.5 * w0 * kick;
+                work.damping_next += inertia[i] * (a_free - a) * 0.5 * w1 * kick;
+            }
+        }
+        for k in 0..3 {
+            if b.contains(Dofs::rotation(k)) {
+                work.kinetic_rotation += 0.5 * inertia[i] * ang[i][k] * ang[i][k];
+                work.boundary -= 0.5 * t[i][k] * ang[i][k] * previous;
+                work.boundary_next -= 0.5 * t[i][k] * ang[i][k] * dt;
+            }
+        }
+        let turn = ang[i] * dt;
+        if turn != Vec3::zeros() {
+            let q = turn_quaternion(turn) * ori[i];
+            ori[i] = renormalized(q.into_inner());
+        }
+    }
 }
 
 /// Kinetic energy, translational and rotational, summed in a fixed order.

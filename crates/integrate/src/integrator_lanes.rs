@@ -44,30 +44,39 @@ fn kick_component(v0: f64x4, a_free: f64x4, k: &Kick) -> (f64x4, f64x4) {
     (v0 + a * f64x4::splat(k.kick), a)
 }
 
-/// Advances four particles with no blocked DOF (the caller checks) by one leapfrog step, as
-/// `leapfrog_step` advances each, adding their energy terms to `work` in its order.
-#[allow(clippy::too_many_arguments)]
+/// The particles of one parallel chunk of the leapfrog, and their loads.
+pub(crate) struct Chunk<'a> {
+    pub(crate) pos: &'a mut [Vec3],
+    pub(crate) vel: &'a mut [Vec3],
+    pub(crate) ori: &'a mut [UnitQuaternion<Real>],
+    pub(crate) ang: &'a mut [Vec3],
+    pub(crate) mass: &'a [Real],
+    pub(crate) inertia: &'a [Real],
+    pub(crate) f: &'a [Vec3],
+    pub(crate) t: &'a [Vec3],
+}
+
+/// Advances the particles `idx[..count]` of chunk `p` (`count` from 1 to 4, with no blocked
+/// DOF: the caller checks; the lanes past `count` repeat a particle and are dropped) by one
+/// leapfrog step, as `leapfrog_step` advances each, adding their energy terms to `work` in
+/// its order (particle by particle, in the order of `idx`).
 pub(crate) fn leapfrog_four(
-    pos: &mut [Vec3],
-    vel: &mut [Vec3],
-    ori: &mut [UnitQuaternion<Real>],
-    ang: &mut [Vec3],
-    mass: &[Real],
-    inertia: &[Real],
-    f: &[Vec3],
-    t: &[Vec3],
+    p: &mut Chunk<'_>,
+    idx: [usize; 4],
+    count: usize,
     k: &Kick,
     work: &mut StepWork,
 ) {
-    let lanes = |x: &[Real]| f64x4::new([x[0], x[1], x[2], x[3]]);
+    let Chunk { pos, vel, ori, ang, mass, inertia, f, t } = p;
+    let lanes = |x: &[Real]| f64x4::new(idx.map(|i| x[i]));
     let (m, j) = (lanes(mass), lanes(inertia));
     let half = f64x4::splat(0.5);
     let (kick, dt) = (f64x4::splat(k.kick), f64x4::splat(k.dt));
 
     // translation
     let inv_mass = f64x4::splat(1.0) / m;
-    let v0 = V3::gather(|l| vel[l]);
-    let force = V3::gather(|l| f[l]);
+    let v0 = V3::gather(|l| vel[idx[l]]);
+    let force = V3::gather(|l| f[idx[l]]);
     let g = k.gravity;
     let (vx, ax_free) = (v0.x, force.x * inv_mass + f64x4::splat(g.x));
     let (vy, ay_free) = (v0.y, force.y * inv_mass + f64x4::splat(g.y));
@@ -88,13 +97,13 @@ pub(crate) fn leapfrog_four(
         std::array::from_fn(|c| (m * losses[c] * half * v0s[c] * kick).to_array());
     let damping_next: [[Real; 4]; 3] =
         std::array::from_fn(|c| (m * losses[c] * half * v1s[c] * kick).to_array());
-    let x = V3::gather(|l| pos[l]);
+    let x = V3::gather(|l| pos[idx[l]]);
     let x1 = x.plus(v1.scale(dt));
 
     // rotation
     let inv_inertia = f64x4::splat(1.0) / j;
-    let w0 = V3::gather(|l| ang[l]);
-    let torque = V3::gather(|l| t[l]);
+    let w0 = V3::gather(|l| ang[idx[l]]);
+    let torque = V3::gather(|l| t[idx[l]]);
     let (w1x, bx) = kick_component(w0.x, torque.x * inv_inertia, k);
     let (w1y, by) = kick_component(w0.y, torque.y * inv_inertia, k);
     let (w1z, bz) = kick_component(w0.z, torque.z * inv_inertia, k);
@@ -130,7 +139,7 @@ pub(crate) fn leapfrog_four(
         }
         tq = Q4 { w: f64x4::new(w), i: f64x4::new(i), j: f64x4::new(jj), k: f64x4::new(kk) };
     }
-    let q0: [UnitQuaternion<Real>; 4] = [ori[0], ori[1], ori[2], ori[3]];
+    let q0: [UnitQuaternion<Real>; 4] = idx.map(|i| ori[i]);
     let q = tq.times(Q4 {
         w: f64x4::new(q0.map(|q| q.w)),
         i: f64x4::new(q0.map(|q| q.i)),
@@ -139,13 +148,14 @@ pub(crate) fn leapfrog_four(
     });
     let n2 = q.norm_squared();
     let q = q.scale(c(1.5) - c(0.5) * n2);
-    let (n2, w, i, jj, kk) =
+    let (n2, w, qi, jj, kk) =
         (n2.to_array(), q.w.to_array(), q.i.to_array(), q.j.to_array(), q.k.to_array());
 
     // written back, and the sums in the scalar loop's order
     let (v1, x1, w1) = (v1.lanes(), x1.lanes(), w1.lanes());
-    for l in 0..4 {
-        vel[l] = v1[l];
+    for l in 0..count {
+        let i = idx[l];
+        vel[i] = v1[l];
         for c in 0..3 {
             work.kinetic_translation += kinetic[c][l];
             if gs[c] != 0.0 {
@@ -156,8 +166,8 @@ pub(crate) fn leapfrog_four(
                 work.damping_next += damping_next[c][l];
             }
         }
-        pos[l] = x1[l];
-        ang[l] = w1[l];
+        pos[i] = x1[l];
+        ang[i] = w1[l];
         for c in 0..3 {
             work.kinetic_rotation += kinetic_rot[c][l];
             if !k.undamped {
@@ -166,8 +176,8 @@ pub(crate) fn leapfrog_four(
             }
         }
         if turns[l] != Vec3::zeros() {
-            ori[l] = if (n2[l] - 1.0).abs() < 1e-8 {
-                UnitQuaternion::new_unchecked(Quaternion::new(w[l], i[l], jj[l], kk[l]))
+            ori[i] = if (n2[l] - 1.0).abs() < 1e-8 {
+                UnitQuaternion::new_unchecked(Quaternion::new(w[l], qi[l], jj[l], kk[l]))
             } else {
                 // (off unit norm beyond the Newton step: `renormalized`'s exact scaling)
                 let q = turn_quaternion(turns[l]) * q0[l];
