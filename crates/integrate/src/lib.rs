@@ -21,6 +21,7 @@ mod neighbours;
 mod offsets;
 mod pair_keys;
 mod pair_passes;
+mod pair_step;
 mod pair_store;
 mod parallel;
 mod pipeline;

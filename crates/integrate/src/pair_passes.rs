@@ -6,10 +6,9 @@
 
 use crate::contact::BirthReport;
 use crate::dashpots::pair_dashpot_power;
-use crate::neighbours::{
-    apart, continuing_spheres, step_pair, LawOut, NeighbourList, PairContact, PairOutcome, Sink,
-};
+use crate::neighbours::{LawOut, NeighbourList, PairContact, PairOutcome, Sink};
 use crate::pair_keys::key_at;
+use crate::pair_step::{apart, continuing_spheres, step_pair};
 use crate::pair_store::{BLOCK, NO_CONTACT};
 use flexdem_elements::virtual_sphere::{Feature, Kinematics, NodeLoad};
 use flexdem_elements::Model;
