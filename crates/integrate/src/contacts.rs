@@ -7,22 +7,21 @@
 use crate::collider::{Collider, NONE};
 pub(crate) use crate::contact::BirthReport;
 use crate::contact::{
-    birth_jump, extent, geometry, law_kinematics, material, mirrored, new_contact, owner,
-    wall_touching, Contact, Touching,
+    birth_jump, extent, geometry, material, mirrored, new_contact, owner, wall_touching, Contact,
+    Touching,
 };
 use crate::contact_list::Contacts;
-use crate::dashpots::{dashpot_power, shear_exit};
-use crate::gather::{fits_codes, load_nodes, LoadIndex, NO_NODE};
-use crate::neighbours::{merged, Pick, Sink};
+use crate::dashpots::shear_exit;
+use crate::gather::LoadIndex;
 use crate::offsets::continued_overlap;
 use crate::pair_passes::PairScratch;
 use crate::parallel::{MIN_PARALLEL_CHEAP, MIN_PARALLEL_COSTLY};
 use crate::prefilter::{proven_apart, write_hull, Hull};
 use crate::touchings::Touchings;
-use flexdem_contact::{update_frictional_contact, ContactDamping};
+use flexdem_contact::ContactDamping;
 use flexdem_elements::pairs::{self, Candidate, ConnectionRef, PFacetRef, SphereRef};
 use flexdem_elements::touching::{dominates, Element, ElementCandidate, Topology};
-use flexdem_elements::virtual_sphere::{distribute_force, Feature, Kinematics, NodeLoad};
+use flexdem_elements::virtual_sphere::{Feature, Kinematics, NodeLoad};
 use flexdem_elements::{Adjacency, Model};
 use flexdem_geom::{Real, Vec3};
 use rayon::prelude::*;
@@ -35,20 +34,20 @@ pub(crate) struct ContactPipeline {
     pub(crate) fresh: Vec<usize>,
     /// Buffers of the neighbour list's update (its fresh pairs among them).
     pub(crate) pairs: PairScratch,
-    loads: Vec<[NodeLoad; 6]>,
+    pub(crate) loads: Vec<[NodeLoad; 6]>,
     /// Whether a contact may have a dashpot (a material has damping, or a contact kept from
     /// before has a dashpot): then `dashpot_loads` (and the neighbour list's) are kept.
-    damped: bool,
+    pub(crate) damped: bool,
     /// Per contact, the node loads of its dashpots' force alone, for their power over the
     /// step after the kick (`dashpots.rs`); empty when `damped` is false.
-    dashpot_loads: Vec<[NodeLoad; 6]>,
+    pub(crate) dashpot_loads: Vec<[NodeLoad; 6]>,
     /// Buffers reused from step to step, so that detection does not allocate once warm.
     scratch: Scratch,
     /// Per contact, the particles its loads go to, slot by slot (`NO_NODE` for a slot not
     /// used): what the index of `gather.rs` reads, written where the loads are made.
-    load_nodes: Vec<[u32; 6]>,
+    pub(crate) load_nodes: Vec<[u32; 6]>,
     /// Where each particle's loads are, for their parallel sum (`gather.rs`).
-    load_index: LoadIndex,
+    pub(crate) load_index: LoadIndex,
 }
 
 /// Candidate pairs per parallel task of the detection (fixed, the order of the touchings does
@@ -562,163 +561,5 @@ impl ContactPipeline {
             }
         }
         report
-    }
-
-    /// Updates every contact's forces (in parallel) and the free spheres' pairs (their
-    /// births and ends too, see `neighbours.rs`), and adds the node loads to `force` and
-    /// `torque` in key order. Returns what the pairs' births and ends moved the energy
-    /// balance by.
-    pub(crate) fn apply(
-        &mut self,
-        contacts: &mut Contacts,
-        model: &Model,
-        dt: Real,
-        force: &mut [Vec3],
-        torque: &mut [Vec3],
-    ) -> BirthReport {
-        let p = &model.particles;
-        let k = Kinematics { pos: &p.pos, vel: &p.vel, ang_vel: &p.ang_vel };
-        let zero = [NodeLoad { node: 0, force: Vec3::zeros(), torque: Vec3::zeros() }; 6];
-        self.loads.resize(contacts.list.len(), zero);
-        self.load_nodes.resize(contacts.list.len(), [NO_NODE; 6]);
-        let update = |c: &mut Contact, loads: &mut [NodeLoad; 6], nodes: &mut [u32; 6]| {
-            let (vs1, vs2, g) = geometry(model, &k, c);
-            let f = update_frictional_contact(&c.params, &mut c.state, &law_kinematics(&g), dt);
-            let l1 = distribute_force(&c.site1, &p.pos, &vs1.center, &g.point, &(-f.force_on_2));
-            let l2 = distribute_force(&c.site2, &p.pos, &vs2.center, &g.point, &f.force_on_2);
-            loads[..3].copy_from_slice(&l1);
-            loads[3..].copy_from_slice(&l2);
-            *nodes = load_nodes(c.site1.node_count(), c.site2.node_count(), loads);
-            c.forces = f;
-            c.point = g.point;
-            (vs1, vs2, g)
-        };
-        if self.damped {
-            // the dashpots' force alone shared as the total is, for its power after the kick
-            self.dashpot_loads.resize(contacts.list.len(), zero);
-            contacts
-                .list
-                .par_iter_mut()
-                .zip(self.loads.par_iter_mut())
-                .zip(self.load_nodes.par_iter_mut())
-                .zip(self.dashpot_loads.par_iter_mut())
-                .with_min_len(MIN_PARALLEL_COSTLY)
-                .for_each(|(((c, loads), nodes), dashpot)| {
-                    let (vs1, vs2, g) = update(c, loads, nodes);
-                    let f = c.forces.dashpot_force;
-                    if f == Vec3::zeros() {
-                        *dashpot = zero;
-                        return;
-                    }
-                    let l1 = distribute_force(&c.site1, &p.pos, &vs1.center, &g.point, &(-f));
-                    let l2 = distribute_force(&c.site2, &p.pos, &vs2.center, &g.point, &f);
-                    dashpot[..3].copy_from_slice(&l1);
-                    dashpot[3..].copy_from_slice(&l2);
-                });
-        } else {
-            contacts
-                .list
-                .par_iter_mut()
-                .zip(self.loads.par_iter_mut())
-                .zip(self.load_nodes.par_iter_mut())
-                .with_min_len(MIN_PARALLEL_COSTLY)
-                .for_each(|((c, loads), nodes)| {
-                    update(c, loads, nodes);
-                });
-        }
-        // in key order, the free spheres' contacts among the others
-        let mut add = |l: &NodeLoad| {
-            force[l.node as usize] += l.force;
-            torque[l.node as usize] += l.torque;
-        };
-        let general_loads = |n: usize| {
-            let (c, loads) = (&contacts.list[n], &self.loads[n]);
-            let (n1, n2) = (c.site1.node_count(), c.site2.node_count());
-            loads[..n1].iter().chain(&loads[3..3 + n2])
-        };
-        let ended = &mut contacts.ended_dissipation;
-        if rayon::current_num_threads() == 1 {
-            // one pass: each pair's loads added as soon as they are known, after the general
-            // contacts of smaller keys (the same sums, in the same order, as below)
-            let general = &contacts.list;
-            let mut g = 0;
-            let report =
-                contacts.pairs.update_in_order(model, dt, &mut self.pairs, ended, |e| match e {
-                    Sink::Before(key) => {
-                        while g < general.len() && general[g].key() < *key {
-                            general_loads(g).for_each(&mut add);
-                            g += 1;
-                        }
-                    }
-                    Sink::Load(l) => add(l),
-                });
-            (g..general.len()).for_each(|n| general_loads(n).for_each(&mut add));
-            return report;
-        }
-        let report = contacts.pairs.update(model, dt, &mut self.pairs, ended);
-        if fits_codes(contacts.list.len(), contacts.pairs.keys().len()) {
-            // each particle's loads in key order, in parallel over the particles (`gather.rs`)
-            let index = &mut self.load_index;
-            index.index_pairs(&contacts.pairs, p.len());
-            index.index_general(&self.load_nodes, p.len());
-            index.add_loads(
-                force,
-                torque,
-                &contacts.list,
-                &self.loads,
-                &contacts.pairs,
-                &self.pairs,
-            );
-            return report;
-        }
-        // the touching pairs' loads come in the order `merged` picks them
-        let mut pair_loads = contacts.pairs.touching_loads(&self.pairs);
-        for pick in merged(&contacts.list, &contacts.pairs) {
-            match pick {
-                Pick::General(n) => general_loads(n).for_each(&mut add),
-                Pick::Pair(n) => {
-                    let (m, loads) = pair_loads.next().expect("a touching pair's loads");
-                    debug_assert_eq!(m, n);
-                    loads.for_each(|l| add(&l));
-                }
-            }
-        }
-        report
-    }
-}
-
-impl ContactPipeline {
-    /// The dissipation of the contacts' dashpots at the last update, split as the leapfrog's
-    /// kinetic energy sees it (model.md §7): `(before, after)`, the work of the dashpot forces
-    /// at t over the half kick before, `−Σ F_d·v_rel(t − dt₀/2)·h/2`, and over the half kick
-    /// after, `−Σ F_d·v_rel(t + dt/2)·h/2` with the velocities the kick has just given (J);
-    /// `h = (dt₀ + dt)/2` is the kick, `dt₀ = previous` the step the law was given (its own
-    /// count, `dissipated.viscous`, is `−F_d·v_rel(t − dt₀/2)·dt₀`). To call after the
-    /// leapfrog; both 0 without dashpots.
-    pub(crate) fn dashpot_dissipation(
-        &self,
-        contacts: &Contacts,
-        model: &Model,
-        previous: Real,
-        dt: Real,
-    ) -> (Real, Real) {
-        if !self.damped {
-            return (0.0, 0.0);
-        }
-        let (mut law, mut power) = (0.0, 0.0);
-        for (c, loads) in contacts.list.iter().zip(&self.dashpot_loads) {
-            let f = &c.forces.dashpot_force;
-            if *f == Vec3::zeros() {
-                continue;
-            }
-            law += c.forces.dissipated.viscous;
-            power += dashpot_power(&c.site1, &c.site2, f, loads, model);
-        }
-        let (pair_law, pair_power) = contacts.pairs.dashpot_dissipation(&self.pairs, model);
-        law += pair_law;
-        power += pair_power;
-        // with a constant step, h/(2·dt₀) is 0.5 exactly
-        let kick = 0.5 * (previous + dt);
-        (law * (kick / (2.0 * previous)), -0.5 * kick * power)
     }
 }

@@ -6,6 +6,7 @@
 mod broad_phase;
 mod collider;
 mod contact;
+mod contact_forces;
 mod contact_list;
 mod contacts;
 mod culprit;
