@@ -11,7 +11,7 @@ use crate::contact::{
     Touching,
 };
 use crate::contact_list::Contacts;
-use crate::dashpots::shear_exit;
+use crate::dashpots::account_ended_springs;
 use crate::gather::LoadIndex;
 use crate::offsets::continued_overlap;
 use crate::pair_passes::PairScratch;
@@ -542,23 +542,11 @@ impl ContactPipeline {
             contacts.ended_dissipation += c.state.dissipated_friction;
             let (_, _, g) = geometry(model, &k, c);
             let now = continued_overlap(c, &g, dt);
-            // the spring leaves the balance: −½·F·δ_now (see above); ended by separating
-            // (δ_now ≤ 0) that is put in, ended while compressed it is released
-            let jump = -0.5 * c.state.normal_force * now;
-            if jump >= 0.0 {
-                report.born_energy += jump;
-            } else {
-                report.released -= jump;
-            }
-            if c.params.ks > 0.0 {
-                report.released += 0.5 * c.state.shear_force.norm_squared() / c.params.ks;
-            }
-            let w = shear_exit(&c.params, &c.state.shear_force, &g.relative_velocity, dt);
-            if w >= 0.0 {
-                report.born_energy += w;
-            } else {
-                report.released -= w;
-            }
+            // the springs leave the balance (see above): ended by separating (δ_now ≤ 0) the
+            // normal spring's −½·F·δ_now is put in, ended while compressed it is released
+            let (params, state, v) = (&c.params, &c.state, &g.relative_velocity);
+            let (put_in, released) = (&mut report.born_energy, &mut report.released);
+            account_ended_springs(params, state, now, v, dt, put_in, released);
         }
         report
     }

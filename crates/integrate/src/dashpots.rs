@@ -5,7 +5,7 @@
 //! the shear spring of a damped contact that ends moves the balance by, and the stiffness a
 //! damped contact counts for in the critical time step.
 
-use flexdem_contact::FrictionalParams;
+use flexdem_contact::{FrictionalContact, FrictionalParams};
 use flexdem_elements::virtual_sphere::{Feature, NodeLoad, Site};
 use flexdem_elements::{Dofs, Model, Particles};
 use flexdem_geom::{Real, Vec3};
@@ -98,6 +98,37 @@ pub(crate) fn shear_exit(params: &FrictionalParams, fs: &Vec3, v_rel: &Vec3, dt:
         0.5 * fs.dot(v_rel) * dt
     } else {
         0.0
+    }
+}
+
+/// What a contact that ended moves the energy balance by, added to `put_in` and `released`
+/// (model.md §2): its normal spring leaves the balance, `−½·F·δ_now` (`now` the overlap, less
+/// its offset, continued to this step: put in when it ended by separating, released when it
+/// ended while compressed); its shear spring's energy `|Fs|²/(2ks)` is released; and
+/// [`shear_exit`], by its sign. The additions in that order, each to its sum.
+pub(crate) fn account_ended_springs(
+    params: &FrictionalParams,
+    state: &FrictionalContact,
+    now: Real,
+    v_rel: &Vec3,
+    dt: Real,
+    put_in: &mut Real,
+    released: &mut Real,
+) {
+    let jump = -0.5 * state.normal_force * now;
+    if jump >= 0.0 {
+        *put_in += jump;
+    } else {
+        *released -= jump;
+    }
+    if params.ks > 0.0 {
+        *released += 0.5 * state.shear_force.norm_squared() / params.ks;
+    }
+    let w = shear_exit(params, &state.shear_force, v_rel, dt);
+    if w >= 0.0 {
+        *put_in += w;
+    } else {
+        *released -= w;
     }
 }
 

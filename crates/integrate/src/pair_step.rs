@@ -8,7 +8,7 @@
 use crate::contact::{
     birth_jump, geometry_of, law_kinematics, new_contact, sphere_touching, wall_touching,
 };
-use crate::dashpots::shear_exit;
+use crate::dashpots::account_ended_springs;
 use crate::neighbours::{sites, AppliedForce, DashpotPush, LawOut, PairContact, PairOutcome};
 use crate::pair_keys::ContactKey;
 use crate::pair_store::{BlockContacts, NO_CONTACT};
@@ -106,22 +106,11 @@ pub(crate) fn step_pair(
             out.ended_dissipation = c.state.dissipated_friction;
             let (_, _, g) = geometry_of(model, k, &site1, &site2, &c.state.normal);
             let now = g.overlap - c.state.overlap_offset;
-            // the spring leaves the balance: −½·F·δ_now (see `settle_births`)
-            let jump = -0.5 * c.state.normal_force * now;
-            if jump >= 0.0 {
-                out.born_energy = jump;
-            } else {
-                out.released = -jump;
-            }
-            if c.params.ks > 0.0 {
-                out.released += 0.5 * c.state.shear_force.norm_squared() / c.params.ks;
-            }
-            let w = shear_exit(&c.params, &c.state.shear_force, &g.relative_velocity, dt);
-            if w >= 0.0 {
-                out.born_energy += w;
-            } else {
-                out.released -= w;
-            }
+            // (from the outcome's zeros: the sums they go to are the same as if the first
+            // term were assigned)
+            let (params, state, v) = (&c.params, &c.state, &g.relative_velocity);
+            let (put_in, released) = (&mut out.born_energy, &mut out.released);
+            account_ended_springs(params, state, now, v, dt, put_in, released);
             block.remove(*slot);
             *slot = NO_CONTACT;
         }
