@@ -22,7 +22,8 @@ use flexdem_geom::{Real, Vec3};
 /// An element in its current configuration (112 bytes): its skeleton points and radius.
 #[derive(Clone, Copy, Debug)]
 pub struct Hull {
-    /// Skeleton points; only the first `count` are used.
+    /// Skeleton points: the first `count` are the element's, the others repeat the last of
+    /// them (so that a test may take all three, with no loop of unknown length).
     pub points: [Vec3; 3],
     /// Mean of the skeleton points.
     pub centroid: Vec3,
@@ -68,11 +69,13 @@ pub fn write_hull(model: &Model, e: Element, h: &mut Hull) {
 }
 
 /// [`Hull::new`] written into `h`, with the count known when compiled (the centroid's sum
-/// unrolled).
+/// unrolled). The points past `COUNT` are set to the last one: the extents along an axis can
+/// then be taken over all three points, without a loop of unknown length, and are the same
+/// (a copy's `x·u` is its original's).
 #[inline(always)]
 fn fill<const COUNT: usize>(h: &mut Hull, points: [Vec3; 3], radius: Real) {
     h.centroid = points[..COUNT].iter().sum::<Vec3>() / COUNT as Real;
-    h.points = points;
+    h.points = std::array::from_fn(|k| points[k.min(COUNT - 1)]);
     h.count = COUNT as u32;
     h.radius = radius;
 }
@@ -86,10 +89,11 @@ pub fn hull(model: &Model, e: Element) -> Hull {
     h
 }
 
-/// (min, max) of x·axis over the first `count` of `points`.
+/// (min, max) of x·axis over a hull's `points` (all three: those past its count repeat its
+/// last, `fill`, and change neither).
 #[inline]
-fn extent(points: &[Vec3; 3], count: u32, axis: &Vec3) -> (Real, Real) {
-    points[..count as usize]
+fn extent(points: &[Vec3; 3], axis: &Vec3) -> (Real, Real) {
+    points
         .iter()
         .map(|x| x.dot(axis))
         .fold((Real::INFINITY, Real::NEG_INFINITY), |(lo, hi), d| (lo.min(d), hi.max(d)))
@@ -106,26 +110,19 @@ fn wider(gap: Real, reach: Real, len2: Real) -> bool {
 /// on its positive side: min over b of x·u − max over a of x·u > (r_a + r_b)·|u|.
 #[cfg(test)]
 pub fn separated_along(a: &Hull, b: &Hull, axis: &Vec3) -> bool {
-    separated_points(&a.points, a.count, &b.points, b.count, a.radius + b.radius, axis)
+    separated_points(&a.points, &b.points, a.radius + b.radius, axis)
 }
 
-/// [`separated_along`] for the stored points `pa`, `pb` (the first `na`, `nb` used) and the
-/// sum of the radii `reach`.
+/// [`separated_along`] for two hulls' points `pa`, `pb` (all three of each, see [`extent`])
+/// and the sum of the radii `reach`.
 #[inline(always)]
-fn separated_points(
-    pa: &[Vec3; 3],
-    na: u32,
-    pb: &[Vec3; 3],
-    nb: u32,
-    reach: Real,
-    axis: &Vec3,
-) -> bool {
+fn separated_points(pa: &[Vec3; 3], pb: &[Vec3; 3], reach: Real, axis: &Vec3) -> bool {
     let len2 = axis.norm_squared();
     if !(len2 > 0.0) {
         return false;
     }
-    let max_a = pa[..na as usize].iter().map(|x| x.dot(axis)).fold(Real::NEG_INFINITY, Real::max);
-    let min_b = pb[..nb as usize].iter().map(|x| x.dot(axis)).fold(Real::INFINITY, Real::min);
+    let max_a = pa.iter().map(|x| x.dot(axis)).fold(Real::NEG_INFINITY, Real::max);
+    let min_b = pb.iter().map(|x| x.dot(axis)).fold(Real::INFINITY, Real::min);
     wider(min_b - max_a, reach, len2)
 }
 
@@ -140,7 +137,7 @@ pub fn proven_apart(a: &Hull, b: &Hull) -> bool {
     let (pa, pb) = (&a.points, &b.points);
     let reach = a.radius + b.radius;
     let axis = b.centroid - a.centroid;
-    if separated_points(pa, a.count, pb, b.count, reach, &axis) {
+    if separated_points(pa, pb, reach, &axis) {
         return true;
     }
     // a PFacet's normal (x₁ − x₀) × (x₂ − x₀) (zero for the other elements and a degenerate PFacet)
@@ -153,11 +150,11 @@ pub fn proven_apart(a: &Hull, b: &Hull) -> bool {
         }
     };
     let (na, nb) = (normal(a), normal(b));
-    for (h, ph, n, po, other) in [(a, pa, &na, pb, b), (b, pb, &nb, pa, a)] {
+    for (h, ph, n, po) in [(a, pa, &na, pb), (b, pb, &nb, pa)] {
         if h.count == 3 {
             // (the PFacet's own extent along its normal is its plane x₀·n)
             let plane = ph[0].dot(n);
-            let (lo, hi) = extent(po, other.count, n);
+            let (lo, hi) = extent(po, n);
             let len2 = n.norm_squared();
             if wider(lo - plane, reach, len2) || wider(plane - hi, reach, len2) {
                 return true;
@@ -184,7 +181,7 @@ fn apart_beyond_an_edge(h: &[Vec3; 3], n: &Vec3, other: &[Vec3; 3], reach: Real)
         let u = (h[(k + 1) % 3] - h[k]).cross(n);
         // the edge's corners are h's farthest points along u
         let from = h[k].dot(&u);
-        let (to, _) = extent(other, 3, &u);
+        let (to, _) = extent(other, &u);
         wider(to - from, reach, u.norm_squared())
     })
 }
@@ -197,6 +194,19 @@ mod tests {
 
     fn tri(points: [Vec3; 3], radius: Real) -> Hull {
         Hull::new(points, 3, radius)
+    }
+
+    /// A point's or a segment's hull repeats its last point, whatever it was given: the
+    /// extents over all three points are those over its own.
+    #[test]
+    fn points_past_the_count_repeat_the_last() {
+        let (p, q, far) = (Vec3::new(1.0, 2.0, 3.0), Vec3::new(-1.0, 0.5, 2.0), Vec3::repeat(9.0));
+        let segment = Hull::new([p, q, far], 2, 0.1);
+        assert_eq!(segment.points, [p, q, q]);
+        assert_eq!(Hull::new([p, far, far], 1, 0.1).points, [p, p, p]);
+        let axis = Vec3::new(0.3, -0.2, 0.9);
+        let (d0, d1) = (p.dot(&axis), q.dot(&axis));
+        assert_eq!(extent(&segment.points, &axis), (d0.min(d1), d0.max(d1)));
     }
 
     #[test]
