@@ -5,7 +5,8 @@
 //! and the particles' four lanes take one instruction where two were needed, and the
 //! scalar code three-operand forms; about a fifth less time per step (`bench/README.md`).
 //! No fused multiply–add is made (Rust never contracts `a·b + c`), and every operation is
-//! the same IEEE one: results are bit-identical to a portable build's, whatever the machine.
+//! the same IEEE one: on a given machine, results are bit-identical to a portable build's
+//! (the libm functions, `sin_cos` and `atan2`, come from the system's library either way).
 //!
 //! A binary copied to a machine without those instructions would stop on the first one with
 //! `SIGILL`; the command line and the Python module call [`unsupported_features`] first and
@@ -28,9 +29,42 @@ pub fn unsupported_features() -> Vec<&'static str> {
                 )*
             };
         }
+        // every extension `target-cpu=native` may enable that the compiler can emit code for
+        // (a machine with AVX-512 of one generation would otherwise pass the check on
+        // another's and stop on an instruction of the newer one)
         check!(
-            "sse3", "ssse3", "sse4.1", "sse4.2", "popcnt", "avx", "avx2", "fma", "bmi1", "bmi2",
-            "lzcnt", "movbe", "f16c", "avx512f", "avx512bw", "avx512cd", "avx512dq", "avx512vl",
+            "sse3",
+            "ssse3",
+            "sse4.1",
+            "sse4.2",
+            "popcnt",
+            "avx",
+            "avx2",
+            "fma",
+            "bmi1",
+            "bmi2",
+            "lzcnt",
+            "movbe",
+            "f16c",
+            "adx",
+            "aes",
+            "pclmulqdq",
+            "sha",
+            "gfni",
+            "vaes",
+            "vpclmulqdq",
+            "avx512f",
+            "avx512bw",
+            "avx512cd",
+            "avx512dq",
+            "avx512vl",
+            "avx512ifma",
+            "avx512vbmi",
+            "avx512vbmi2",
+            "avx512bitalg",
+            "avx512vpopcntdq",
+            "avx512vnni",
+            "avx512bf16",
         );
     }
     missing
