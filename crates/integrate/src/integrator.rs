@@ -91,28 +91,29 @@ fn leapfrog_step_lanes(
         .into_par_iter()
         .map(|(pos, vel, ori, ang, mass, inertia, blocked, f, t)| {
             let mut work = StepWork::default();
-            let lanes = Kick { gravity: *gravity, lambda, undamped, kick, dt };
-            let mut p = Chunk { pos, vel, ori, ang, mass, inertia, f, t };
-            // the free particles four at a time (`integrator_lanes.rs`: the same bits), in
-            // order with the others: a particle with a blocked DOF, or a free one left alone,
-            // goes the scalar way after the free ones before it
-            let mut free = [0usize; 4];
+            let lanes = Kick { gravity: *gravity, lambda, undamped, kick, previous, dt };
+            let mut p = Chunk { pos, vel, ori, ang, mass, inertia, f, t, blocked };
+            // four particles at a time (`integrator_lanes.rs`: the same bits, blocked DOFs
+            // or not), in order with the others: a particle with every DOF blocked (a
+            // support: the scalar way is a few additions), or one left alone, goes the
+            // scalar way after the batched ones before it
+            let mut batch = [0usize; 4];
             let mut count = 0;
             for i in 0..blocked.len() {
-                if four && blocked[i] == Dofs::NONE {
-                    free[count] = i;
+                if four && blocked[i] != Dofs::ALL {
+                    batch[count] = i;
                     count += 1;
                     if count == 4 {
-                        leapfrog_four(&mut p, free, 4, &lanes, &mut work);
+                        four_of(&mut p, batch, 4, &lanes, &mut work);
                         count = 0;
                     }
                     continue;
                 }
-                flush_free(&mut p, &free[..count], &lanes, previous, &mut work);
+                flush_batch(&mut p, &batch[..count], &lanes, &mut work);
                 count = 0;
-                leapfrog_one(&mut p, i, blocked[i], &lanes, previous, &mut work);
+                leapfrog_one(&mut p, i, &lanes, &mut work);
             }
-            flush_free(&mut p, &free[..count], &lanes, previous, &mut work);
+            flush_batch(&mut p, &batch[..count], &lanes, &mut work);
             work
         })
         .collect_into_vec(parts);
@@ -123,32 +124,36 @@ fn leapfrog_step_lanes(
     total
 }
 
-/// The free particles `free` of chunk `p` (fewer than four, in order): two or more through
-/// the lanes (the others repeated), one alone the scalar way.
-fn flush_free(p: &mut Chunk<'_>, free: &[usize], k: &Kick, previous: Real, work: &mut StepWork) {
-    match *free {
+/// The particles `batch` of chunk `p` (fewer than four, in order): two or more through the
+/// lanes (the last repeated), one alone the scalar way.
+fn flush_batch(p: &mut Chunk<'_>, batch: &[usize], k: &Kick, work: &mut StepWork) {
+    match *batch {
         [] => {}
-        [i] => leapfrog_one(p, i, Dofs::NONE, k, previous, work),
+        [i] => leapfrog_one(p, i, k, work),
         _ => {
-            let last = free[free.len() - 1];
-            let idx = std::array::from_fn(|l| free.get(l).copied().unwrap_or(last));
-            leapfrog_four(p, idx, free.len(), k, work);
+            let last = batch[batch.len() - 1];
+            let idx = std::array::from_fn(|l| batch.get(l).copied().unwrap_or(last));
+            four_of(p, idx, batch.len(), k, work);
         }
     }
 }
 
-/// Advances particle `i` of chunk `p` (its blocked DOFs `b`) by one leapfrog step, adding its
-/// energy terms to `work` (`previous` is dt₀, for the supports' work).
-fn leapfrog_one(
-    p: &mut Chunk<'_>,
-    i: usize,
-    b: Dofs,
-    step: &Kick,
-    previous: Real,
-    work: &mut StepWork,
-) {
-    let Chunk { pos, vel, ori, ang, mass, inertia, f, t } = p;
-    let Kick { gravity, lambda, undamped, kick, dt } = *step;
+/// `leapfrog_four` of `idx[..count]`, without the blocked DOFs' code when none is blocked.
+#[inline(always)]
+fn four_of(p: &mut Chunk<'_>, idx: [usize; 4], count: usize, k: &Kick, work: &mut StepWork) {
+    if idx.iter().all(|&i| p.blocked[i].is_empty()) {
+        leapfrog_four::<false>(p, idx, count, k, work);
+    } else {
+        leapfrog_four::<true>(p, idx, count, k, work);
+    }
+}
+
+/// Advances particle `i` of chunk `p` (with its blocked DOFs) by one leapfrog step, adding its
+/// energy terms to `work`.
+fn leapfrog_one(p: &mut Chunk<'_>, i: usize, step: &Kick, work: &mut StepWork) {
+    let Chunk { pos, vel, ori, ang, mass, inertia, f, t, blocked } = p;
+    let b = blocked[i];
+    let Kick { gravity, lambda, undamped, kick, previous, dt } = *step;
     let gravity = &gravity;
     // one division per particle, not one per DOF
     let inv_mass = 1.0 / mass[i];
@@ -240,10 +245,10 @@ mod tests {
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(128))]
 
-        /// Free particles (some blocked, so that both paths run in one chunk) under random
-        /// forces and torques, spins up to large turns per step, with and without damping and
-        /// gravity: four at a time or one by one, every position, velocity, orientation and
-        /// energy term has the same bits.
+        /// Particles, some with random sets of blocked DOFs (both paths in one chunk), under
+        /// random forces and torques, spins up to large turns per step, with and without
+        /// damping and gravity: four at a time or one by one, every position, velocity,
+        /// orientation and energy term has the same bits.
         #[test]
         fn four_at_a_time_is_one_by_one_to_the_bit(
             n in 1usize..23,
@@ -269,7 +274,11 @@ mod tests {
                 q.ang_vel = Vec3::new(r(), r(), r()) * spin;
                 q.ori = UnitQuaternion::from_scaled_axis(Vec3::new(r(), r(), r()) * 3.0);
                 if blocked_every > 0 && i % blocked_every == 0 {
-                    q.blocked = Dofs::X | Dofs::RZ;
+                    // any set of blocked DOFs (all, none, pinned nodes, rotations at rest)
+                    q.blocked = Dofs::from_bits_truncate((64.0 * (0.5 + 0.5 * r())) as u8 & 63);
+                    if q.blocked.contains(Dofs::ROTATION) && r() < 0.0 {
+                        q.ang_vel = Vec3::zeros();
+                    }
                 }
                 p.push(q);
             }

@@ -1,13 +1,17 @@
-//! Four free particles advanced at once (`flexdem_geom::lanes`: SIMD with nalgebra's formulas
+//! Four particles advanced at once (`flexdem_geom::lanes`: SIMD with nalgebra's formulas
 //! term for term), the leapfrog of `integrator.rs` with the same bits: each lane's velocity,
 //! position and orientation are computed by the same operations in the same order, and the
 //! energy terms, computed four at a time, are added to the sums one by one in the scalar
-//! loop's order (particle by particle, translation then rotation, component by component). A
-//! turn beyond the series of `turn_quaternion` and a product off unit norm by more than the
-//! Newton step's range are made for that lane by the scalar functions.
+//! loop's order (particle by particle, translation then rotation, component by component, the
+//! free components before the blocked ones). A blocked DOF's lane computes the free kick too
+//! and keeps its velocity by a select; a particle whose rotations are all blocked and at rest
+//! adds no rotational term, as the scalar loop skips it. A turn beyond the series of
+//! `turn_quaternion` and a product off unit norm by more than the Newton step's range are
+//! made for that lane by the scalar functions.
 
 use crate::step_work::StepWork;
 use crate::turn::{half_turn_series, turn_quaternion, SERIES_TURN};
+use flexdem_elements::Dofs;
 use flexdem_geom::lanes::{f64x4, Q4, V3};
 use flexdem_geom::{Real, Vec3};
 use nalgebra::{Quaternion, UnitQuaternion};
@@ -20,6 +24,8 @@ pub(crate) struct Kick {
     pub(crate) undamped: bool,
     /// `(dt₀ + dt)/2`.
     pub(crate) kick: Real,
+    /// The step before, dt₀ (for the supports' work).
+    pub(crate) previous: Real,
     pub(crate) dt: Real,
 }
 
@@ -54,24 +60,33 @@ pub(crate) struct Chunk<'a> {
     pub(crate) inertia: &'a [Real],
     pub(crate) f: &'a [Vec3],
     pub(crate) t: &'a [Vec3],
+    /// Each particle's blocked DOFs.
+    pub(crate) blocked: &'a [Dofs],
 }
 
-/// Advances the particles `idx[..count]` of chunk `p` (`count` from 1 to 4, with no blocked
-/// DOF: the caller checks; the lanes past `count` repeat a particle and are dropped) by one
-/// leapfrog step, as `leapfrog_step` advances each, adding their energy terms to `work` in
-/// its order (particle by particle, in the order of `idx`).
-pub(crate) fn leapfrog_four(
+/// Advances the particles `idx[..count]` of chunk `p` (`count` from 1 to 4, any blocked
+/// DOFs; the lanes past `count` repeat a particle and are dropped) by one leapfrog step, as
+/// `leapfrog_step` advances each, adding their energy terms to `work` in its order (particle
+/// by particle, in the order of `idx`). `HELD` false is for four particles with no blocked
+/// DOF (the caller checks): their code is then the one without selects and their terms.
+pub(crate) fn leapfrog_four<const HELD: bool>(
     p: &mut Chunk<'_>,
     idx: [usize; 4],
     count: usize,
     k: &Kick,
     work: &mut StepWork,
 ) {
-    let Chunk { pos, vel, ori, ang, mass, inertia, f, t } = p;
+    let Chunk { pos, vel, ori, ang, mass, inertia, f, t, blocked } = p;
+    let held = if HELD { idx.map(|i| blocked[i]) } else { [Dofs::NONE; 4] };
+    let any_held = HELD && held.iter().any(|b| !b.is_empty());
     let lanes = |x: &[Real]| f64x4::new(idx.map(|i| x[i]));
     let (m, j) = (lanes(mass), lanes(inertia));
     let half = f64x4::splat(0.5);
     let (kick, dt) = (f64x4::splat(k.kick), f64x4::splat(k.dt));
+    // lane by lane, whether a DOF is blocked (all set) or free (all clear)
+    let zero = f64x4::splat(0.0);
+    let mask =
+        |d: Dofs| f64x4::new(held.map(|b| Real::from(u8::from(b.contains(d))))).simd_gt(zero);
 
     // translation
     let inv_mass = f64x4::splat(1.0) / m;
@@ -84,7 +99,15 @@ pub(crate) fn leapfrog_four(
     let (v1x, ax) = kick_component(vx, ax_free, k);
     let (v1y, ay) = kick_component(vy, ay_free, k);
     let (v1z, az) = kick_component(vz, az_free, k);
-    let v1 = V3 { x: v1x, y: v1y, z: v1z };
+    let mut v1 = V3 { x: v1x, y: v1y, z: v1z };
+    if any_held {
+        // a blocked component keeps its velocity
+        v1 = V3 {
+            x: mask(Dofs::X).select(vx, v1x),
+            y: mask(Dofs::Y).select(vy, v1y),
+            z: mask(Dofs::Z).select(vz, v1z),
+        };
+    }
     let v0s = [vx, vy, vz];
     let v1s = [v1x, v1y, v1z];
     let losses = [ax_free - ax, ay_free - ay, az_free - az];
@@ -97,6 +120,17 @@ pub(crate) fn leapfrog_four(
         std::array::from_fn(|c| (m * losses[c] * half * v0s[c] * kick).to_array());
     let damping_next: [[Real; 4]; 3] =
         std::array::from_fn(|c| (m * losses[c] * half * v1s[c] * kick).to_array());
+    // a blocked component's: ½m·v·v, and the support's ½f·v·dt₀ and ½f·v·dt
+    let fs = [force.x, force.y, force.z];
+    let supports = |p: &[f64x4; 3], f: &[f64x4; 3], v: &[f64x4; 3]| -> Supports {
+        let (prev, dt) = (f64x4::splat(k.previous), dt);
+        Supports {
+            kinetic: std::array::from_fn(|c| (half * p[c] * v[c] * v[c]).to_array()),
+            before: std::array::from_fn(|c| (half * f[c] * v[c] * prev).to_array()),
+            after: std::array::from_fn(|c| (half * f[c] * v[c] * dt).to_array()),
+        }
+    };
+    let held_translation = any_held.then(|| supports(&[m; 3], &fs, &v0s));
     let x = V3::gather(|l| pos[idx[l]]);
     let x1 = x.plus(v1.scale(dt));
 
@@ -117,7 +151,16 @@ pub(crate) fn leapfrog_four(
         std::array::from_fn(|c| (j * rot_losses[c] * half * w0s[c] * kick).to_array());
     let rot_damping_next: [[Real; 4]; 3] =
         std::array::from_fn(|c| (j * rot_losses[c] * half * w1s[c] * kick).to_array());
-    let w1 = V3 { x: w1x, y: w1y, z: w1z };
+    let mut w1 = V3 { x: w1x, y: w1y, z: w1z };
+    if any_held {
+        w1 = V3 {
+            x: mask(Dofs::RX).select(w0.x, w1x),
+            y: mask(Dofs::RY).select(w0.y, w1y),
+            z: mask(Dofs::RZ).select(w0.z, w1z),
+        };
+    }
+    let ts = [torque.x, torque.y, torque.z];
+    let held_rotation = any_held.then(|| supports(&[j; 3], &ts, &w0s));
 
     // the orientation turned by rot(ω·dt) (`turn_quaternion`, its series), renormalized
     let turn = w1.scale(dt);
@@ -153,26 +196,47 @@ pub(crate) fn leapfrog_four(
 
     // written back, and the sums in the scalar loop's order
     let (v1, x1, w1) = (v1.lanes(), x1.lanes(), w1.lanes());
-    for l in 0..count {
-        let i = idx[l];
-        vel[i] = v1[l];
-        for c in 0..3 {
-            work.kinetic_translation += kinetic[c][l];
-            if gs[c] != 0.0 {
-                work.gravity += gravity[c][l];
-            }
-            if !k.undamped {
-                work.damping += damping[c][l];
-                work.damping_next += damping_next[c][l];
-            }
+    let w0 = if any_held { w0.lanes() } else { [Vec3::zeros(); 4] };
+    // a free component's terms, translation and rotation
+    let free_translation = |c: usize, l: usize, work: &mut StepWork| {
+        work.kinetic_translation += kinetic[c][l];
+        if gs[c] != 0.0 {
+            work.gravity += gravity[c][l];
         }
+        if !k.undamped {
+            work.damping += damping[c][l];
+            work.damping_next += damping_next[c][l];
+        }
+    };
+    let free_rotation = |c: usize, l: usize, work: &mut StepWork| {
+        work.kinetic_rotation += kinetic_rot[c][l];
+        if !k.undamped {
+            work.damping += rot_damping[c][l];
+            work.damping_next += rot_damping_next[c][l];
+        }
+    };
+    for l in 0..count {
+        let (i, b) = (idx[l], held[l]);
+        vel[i] = v1[l];
         pos[i] = x1[l];
+        // (a lane whose rotations are all blocked keeps its angular velocity: the same bits)
         ang[i] = w1[l];
-        for c in 0..3 {
-            work.kinetic_rotation += kinetic_rot[c][l];
-            if !k.undamped {
-                work.damping += rot_damping[c][l];
-                work.damping_next += rot_damping_next[c][l];
+        if !HELD || b.is_empty() {
+            (0..3).for_each(|c| free_translation(c, l, work));
+            (0..3).for_each(|c| free_rotation(c, l, work));
+        } else {
+            // the free components' terms, then the blocked ones'
+            let (t, r) = (|c| b.contains(Dofs::translation(c)), |c| b.contains(Dofs::rotation(c)));
+            (0..3).filter(|&c| !t(c)).for_each(|c| free_translation(c, l, work));
+            if let Some(s) = &held_translation {
+                s.add(l, t, |w| &mut w.kinetic_translation, work);
+            }
+            // (rotations blocked and at rest: the scalar loop leaves them alone)
+            if !(b.contains(Dofs::ROTATION) && w0[l] == Vec3::zeros()) {
+                (0..3).filter(|&c| !r(c)).for_each(|c| free_rotation(c, l, work));
+                if let Some(s) = &held_rotation {
+                    s.add(l, r, |w| &mut w.kinetic_rotation, work);
+                }
             }
         }
         if turns[l] != Vec3::zeros() {
@@ -183,6 +247,35 @@ pub(crate) fn leapfrog_four(
                 let q = turn_quaternion(turns[l]) * q0[l];
                 UnitQuaternion::new_normalize(q.into_inner())
             };
+        }
+    }
+}
+
+/// The energy terms of the blocked components of four lanes (translation or rotation), per
+/// component and lane: the kinetic ½p·v·v (p the mass or the moment of inertia) and the
+/// support's work −½f·v·dt₀ and −½f·v·dt (f the force or torque the support cancels).
+struct Supports {
+    kinetic: [[Real; 4]; 3],
+    before: [[Real; 4]; 3],
+    after: [[Real; 4]; 3],
+}
+
+impl Supports {
+    /// Adds lane `l`'s terms of the components `blocked` says, in component order: to the
+    /// kinetic sum `kinetic` picks and to the supports' sums of `work`.
+    fn add(
+        &self,
+        l: usize,
+        blocked: impl Fn(usize) -> bool,
+        kinetic: fn(&mut StepWork) -> &mut Real,
+        work: &mut StepWork,
+    ) {
+        for c in 0..3 {
+            if blocked(c) {
+                *kinetic(work) += self.kinetic[c][l];
+                work.boundary -= self.before[c][l];
+                work.boundary_next -= self.after[c][l];
+            }
         }
     }
 }
