@@ -215,8 +215,6 @@ pub fn update_link_lanes(
     let fn_ = fn_.to_array();
     let (fs2, mt2, mb2, e) = (fs2.to_array(), mt2.to_array(), mb2.to_array(), e.to_array());
     let mag2 = mag2.to_array();
-    let (n, fs) = (n.lanes(), fs.lanes());
-    let (f2, lever, m) = (f2.lanes(), lever.lanes(), m.lanes());
     let mut taken = 0;
     for j in 0..LANES {
         let lim = &classes[j].strength;
@@ -235,12 +233,13 @@ pub fn update_link_lanes(
             continue;
         }
         let state = &mut states[j];
-        state.normal = n[j];
-        state.shear_force = fs[j];
+        // (each lane read from the vectors where it is: `V3::lane`)
+        state.normal = n.lane(j);
+        state.shear_force = fs.lane(j);
         let load = LaneLoad {
-            force_on_2: f2[j],
-            lever_torque: lever[j],
-            moment_on_2: m[j],
+            force_on_2: f2.lane(j),
+            lever_torque: lever.lane(j),
+            moment_on_2: m.lane(j),
             elastic_energy: e[j],
         };
         store(j, &load);

@@ -36,6 +36,14 @@ impl V3 {
         std::array::from_fn(|j| Vec3::new(x[j], y[j], z[j]))
     }
 
+    /// Lane `l` as a vector, read from the three coordinates where they are (no array of
+    /// four vectors made on the stack: copying one out of it would read 16 bytes written as
+    /// two 8-byte stores, which store forwarding cannot serve).
+    #[inline(always)]
+    pub fn lane(&self, l: usize) -> Vec3 {
+        Vec3::new(self.x.as_array()[l], self.y.as_array()[l], self.z.as_array()[l])
+    }
+
     /// Lane by lane sum.
     #[inline(always)]
     pub fn plus(self, o: V3) -> V3 {

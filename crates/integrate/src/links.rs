@@ -342,11 +342,14 @@ impl Links {
                         let out = &mut loads[k..k + LANES];
                         let taken = update_link_lanes(cls, sps, four, &at, dt, |j, l| {
                             energy[j] = l.elastic_energy;
-                            out[j] = LinkLoad {
-                                force_on_2: l.force_on_2,
-                                lever_torque: l.lever_torque,
-                                moment_on_2: l.moment_on_2,
-                            };
+                            // field by field: a `LinkLoad` built whole was assembled on the
+                            // stack by small stores and copied by one 64-byte load, which
+                            // waits for them all (a failed store forwarding: a fifth of the
+                            // links stage of the net twin)
+                            let out = &mut out[j];
+                            out.force_on_2 = l.force_on_2;
+                            out.lever_torque = l.lever_torque;
+                            out.moment_on_2 = l.moment_on_2;
                         });
                         (LANES, taken)
                     } else {
