@@ -50,6 +50,15 @@ fn kick_component(v0: f64x4, a_free: f64x4, k: &Kick) -> (f64x4, f64x4) {
     (v0 + a * f64x4::splat(k.kick), a)
 }
 
+/// `[f(0), f(1), f(2)]`: the three components' terms kept in vectors, each lane read where
+/// it is added (an array of arrays made by `std::array::from_fn` was written by 32-byte
+/// stores and copied by 64-byte loads, which wait for them: a failed store forwarding that
+/// took a fifth of this function's time on the net twin).
+#[inline(always)]
+fn three(f: impl Fn(usize) -> f64x4) -> [f64x4; 3] {
+    [f(0), f(1), f(2)]
+}
+
 /// The particles of one parallel chunk of the leapfrog, and their loads.
 pub(crate) struct Chunk<'a> {
     pub(crate) pos: &'a mut [Vec3],
@@ -113,21 +122,18 @@ pub(crate) fn leapfrog_four<const HELD: bool>(
     let losses = [ax_free - ax, ay_free - ay, az_free - az];
     let gs = [g.x, g.y, g.z];
     // the terms: ½m·v0·v1, m·g·v1·dt, m·(a_free − a)·½·v0·kick and ·v1·kick
-    let kinetic: [[Real; 4]; 3] = std::array::from_fn(|c| (half * m * v0s[c] * v1s[c]).to_array());
-    let gravity: [[Real; 4]; 3] =
-        std::array::from_fn(|c| (m * f64x4::splat(gs[c]) * v1s[c] * dt).to_array());
-    let damping: [[Real; 4]; 3] =
-        std::array::from_fn(|c| (m * losses[c] * half * v0s[c] * kick).to_array());
-    let damping_next: [[Real; 4]; 3] =
-        std::array::from_fn(|c| (m * losses[c] * half * v1s[c] * kick).to_array());
+    let kinetic: [f64x4; 3] = three(|c| half * m * v0s[c] * v1s[c]);
+    let gravity: [f64x4; 3] = three(|c| m * f64x4::splat(gs[c]) * v1s[c] * dt);
+    let damping: [f64x4; 3] = three(|c| m * losses[c] * half * v0s[c] * kick);
+    let damping_next: [f64x4; 3] = three(|c| m * losses[c] * half * v1s[c] * kick);
     // a blocked component's: ½m·v·v, and the support's ½f·v·dt₀ and ½f·v·dt
     let fs = [force.x, force.y, force.z];
     let supports = |p: &[f64x4; 3], f: &[f64x4; 3], v: &[f64x4; 3]| -> Supports {
         let (prev, dt) = (f64x4::splat(k.previous), dt);
         Supports {
-            kinetic: std::array::from_fn(|c| (half * p[c] * v[c] * v[c]).to_array()),
-            before: std::array::from_fn(|c| (half * f[c] * v[c] * prev).to_array()),
-            after: std::array::from_fn(|c| (half * f[c] * v[c] * dt).to_array()),
+            kinetic: three(|c| half * p[c] * v[c] * v[c]),
+            before: three(|c| half * f[c] * v[c] * prev),
+            after: three(|c| half * f[c] * v[c] * dt),
         }
     };
     let held_translation = any_held.then(|| supports(&[m; 3], &fs, &v0s));
@@ -145,12 +151,9 @@ pub(crate) fn leapfrog_four<const HELD: bool>(
     let w1s = [w1x, w1y, w1z];
     let rot_losses =
         [torque.x * inv_inertia - bx, torque.y * inv_inertia - by, torque.z * inv_inertia - bz];
-    let kinetic_rot: [[Real; 4]; 3] =
-        std::array::from_fn(|c| (half * j * w0s[c] * w1s[c]).to_array());
-    let rot_damping: [[Real; 4]; 3] =
-        std::array::from_fn(|c| (j * rot_losses[c] * half * w0s[c] * kick).to_array());
-    let rot_damping_next: [[Real; 4]; 3] =
-        std::array::from_fn(|c| (j * rot_losses[c] * half * w1s[c] * kick).to_array());
+    let kinetic_rot: [f64x4; 3] = three(|c| half * j * w0s[c] * w1s[c]);
+    let rot_damping: [f64x4; 3] = three(|c| j * rot_losses[c] * half * w0s[c] * kick);
+    let rot_damping_next: [f64x4; 3] = three(|c| j * rot_losses[c] * half * w1s[c] * kick);
     let mut w1 = V3 { x: w1x, y: w1y, z: w1z };
     if any_held {
         w1 = V3 {
@@ -169,25 +172,24 @@ pub(crate) fn leapfrog_four<const HELD: bool>(
     let (cos, sin_over_x) = half_turn_series(c(0.25) * t2, c);
     let v = turn.scale(c(0.5) * sin_over_x);
     let mut tq = Q4 { w: cos, i: v.x, j: v.y, k: v.z };
-    let (t2s, turns) = (t2.to_array(), turn.lanes());
+    let t2s = t2.to_array();
     if !t2.simd_lt(c(SERIES_TURN * SERIES_TURN)).all() || !t2.simd_ge(c(1e-280)).all() {
         // (beyond the series or below 1e-140 rad: `turn_quaternion` itself for those lanes)
         let (mut w, mut i, mut jj, mut kk) =
             (tq.w.to_array(), tq.i.to_array(), tq.j.to_array(), tq.k.to_array());
         for l in 0..4 {
             if !(t2s[l] < SERIES_TURN * SERIES_TURN && t2s[l] >= 1e-280) {
-                let q = turn_quaternion(turns[l]);
+                let q = turn_quaternion(turn.lane(l));
                 (w[l], i[l], jj[l], kk[l]) = (q.w, q.i, q.j, q.k);
             }
         }
         tq = Q4 { w: f64x4::new(w), i: f64x4::new(i), j: f64x4::new(jj), k: f64x4::new(kk) };
     }
-    let q0: [UnitQuaternion<Real>; 4] = idx.map(|i| ori[i]);
     let q = tq.times(Q4 {
-        w: f64x4::new(q0.map(|q| q.w)),
-        i: f64x4::new(q0.map(|q| q.i)),
-        j: f64x4::new(q0.map(|q| q.j)),
-        k: f64x4::new(q0.map(|q| q.k)),
+        w: f64x4::new(idx.map(|i| ori[i].w)),
+        i: f64x4::new(idx.map(|i| ori[i].i)),
+        j: f64x4::new(idx.map(|i| ori[i].j)),
+        k: f64x4::new(idx.map(|i| ori[i].k)),
     });
     let n2 = q.norm_squared();
     let q = q.scale(c(1.5) - c(0.5) * n2);
@@ -195,32 +197,30 @@ pub(crate) fn leapfrog_four<const HELD: bool>(
         (n2.to_array(), q.w.to_array(), q.i.to_array(), q.j.to_array(), q.k.to_array());
 
     // written back, and the sums in the scalar loop's order
-    let (v1, x1, w1) = (v1.lanes(), x1.lanes(), w1.lanes());
-    let w0 = if any_held { w0.lanes() } else { [Vec3::zeros(); 4] };
     // a free component's terms, translation and rotation
     let free_translation = |c: usize, l: usize, work: &mut StepWork| {
-        work.kinetic_translation += kinetic[c][l];
+        work.kinetic_translation += kinetic[c].as_array()[l];
         if gs[c] != 0.0 {
-            work.gravity += gravity[c][l];
+            work.gravity += gravity[c].as_array()[l];
         }
         if !k.undamped {
-            work.damping += damping[c][l];
-            work.damping_next += damping_next[c][l];
+            work.damping += damping[c].as_array()[l];
+            work.damping_next += damping_next[c].as_array()[l];
         }
     };
     let free_rotation = |c: usize, l: usize, work: &mut StepWork| {
-        work.kinetic_rotation += kinetic_rot[c][l];
+        work.kinetic_rotation += kinetic_rot[c].as_array()[l];
         if !k.undamped {
-            work.damping += rot_damping[c][l];
-            work.damping_next += rot_damping_next[c][l];
+            work.damping += rot_damping[c].as_array()[l];
+            work.damping_next += rot_damping_next[c].as_array()[l];
         }
     };
     for l in 0..count {
         let (i, b) = (idx[l], held[l]);
-        vel[i] = v1[l];
-        pos[i] = x1[l];
+        vel[i] = v1.lane(l);
+        pos[i] = x1.lane(l);
         // (a lane whose rotations are all blocked keeps its angular velocity: the same bits)
-        ang[i] = w1[l];
+        ang[i] = w1.lane(l);
         if !HELD || b.is_empty() {
             (0..3).for_each(|c| free_translation(c, l, work));
             (0..3).for_each(|c| free_rotation(c, l, work));
@@ -232,19 +232,19 @@ pub(crate) fn leapfrog_four<const HELD: bool>(
                 s.add(l, t, |w| &mut w.kinetic_translation, work);
             }
             // (rotations blocked and at rest: the scalar loop leaves them alone)
-            if !(b.contains(Dofs::ROTATION) && w0[l] == Vec3::zeros()) {
+            if !(b.contains(Dofs::ROTATION) && w0.lane(l) == Vec3::zeros()) {
                 (0..3).filter(|&c| !r(c)).for_each(|c| free_rotation(c, l, work));
                 if let Some(s) = &held_rotation {
                     s.add(l, r, |w| &mut w.kinetic_rotation, work);
                 }
             }
         }
-        if turns[l] != Vec3::zeros() {
+        if turn.lane(l) != Vec3::zeros() {
             ori[i] = if (n2[l] - 1.0).abs() < 1e-8 {
                 UnitQuaternion::new_unchecked(Quaternion::new(w[l], qi[l], jj[l], kk[l]))
             } else {
                 // (off unit norm beyond the Newton step: `renormalized`'s exact scaling)
-                let q = turn_quaternion(turns[l]) * q0[l];
+                let q = turn_quaternion(turn.lane(l)) * ori[i];
                 UnitQuaternion::new_normalize(q.into_inner())
             };
         }
@@ -255,9 +255,9 @@ pub(crate) fn leapfrog_four<const HELD: bool>(
 /// component and lane: the kinetic ½p·v·v (p the mass or the moment of inertia) and the
 /// support's work −½f·v·dt₀ and −½f·v·dt (f the force or torque the support cancels).
 struct Supports {
-    kinetic: [[Real; 4]; 3],
-    before: [[Real; 4]; 3],
-    after: [[Real; 4]; 3],
+    kinetic: [f64x4; 3],
+    before: [f64x4; 3],
+    after: [f64x4; 3],
 }
 
 impl Supports {
@@ -272,9 +272,9 @@ impl Supports {
     ) {
         for c in 0..3 {
             if blocked(c) {
-                *kinetic(work) += self.kinetic[c][l];
-                work.boundary -= self.before[c][l];
-                work.boundary_next -= self.after[c][l];
+                *kinetic(work) += self.kinetic[c].as_array()[l];
+                work.boundary -= self.before[c].as_array()[l];
+                work.boundary_next -= self.after[c].as_array()[l];
             }
         }
     }
