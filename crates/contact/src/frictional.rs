@@ -151,7 +151,7 @@ pub struct ContactForces {
 /// The dashpots dissipate `−F_d·v·dt` in the update (`dissipated.viscous`), `F_d` their force
 /// on body 2 as applied (after the clamp). `elastic_energy` is the springs' energy only.
 /// With cn = ct = 0 every result is the one of the purely elastic–frictional law, bit for bit.
-#[inline]
+#[inline(always)]
 pub fn update_frictional_contact(
     params: &FrictionalParams,
     state: &mut FrictionalContact,
