@@ -182,18 +182,31 @@ impl Default for PairOutcome {
     }
 }
 
-/// What the law gave a pair that touches after its step, besides its loads: its elastic
-/// energy, and its dashpots' force when they pushed.
-#[derive(Clone, Copy, Debug, Default)]
-pub(crate) struct LawOut {
+/// Where the law of a pair that touches after its step puts what it gave besides its loads:
+/// its elastic energy, and, when its dashpots pushed, their record, appended to `pushed`
+/// (the pair's chunk's list) under the pair's `index`, field by field in its place (a record
+/// made whole on the stack by small stores and copied into the list by wide loads waited on
+/// a failed store forwarding: the costliest instruction of the LAMMPS twin's contacts).
+#[derive(Debug)]
+pub(crate) struct LawOut<'a> {
     pub(crate) elastic: Real,
-    pub(crate) dashpot: Option<DashpotPush>,
+    pub(crate) pushed: &'a mut Vec<Pushed>,
+    pub(crate) index: u32,
 }
 
-/// The dashpots' force alone on body 2 at an update (body 1 has the opposite), its moments
-/// about the two bodies' centres, and the law's count of its dissipation.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct DashpotPush {
+impl<'a> LawOut<'a> {
+    /// For pair `index`, its records going to `pushed`.
+    pub(crate) fn new(pushed: &'a mut Vec<Pushed>, index: usize) -> Self {
+        LawOut { elastic: 0.0, pushed, index: index as u32 }
+    }
+}
+
+/// A pair whose dashpots pushed at an update: its index, the dashpots' force alone on body 2
+/// (body 1 has the opposite), its moments about the two bodies' centres, and the law's count
+/// of its dissipation.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct Pushed {
+    pub(crate) index: u32,
     pub(crate) force: Vec3,
     pub(crate) moments: [Vec3; 2],
     pub(crate) viscous: Real,

@@ -6,7 +6,7 @@
 
 use crate::contact::BirthReport;
 use crate::dashpots::pair_dashpot_power;
-use crate::neighbours::{LawOut, NeighbourList, PairContact, PairOutcome, Sink};
+use crate::neighbours::{LawOut, NeighbourList, PairContact, PairOutcome, Pushed, Sink};
 use crate::pair_keys::key_at;
 use crate::pair_step::{apart, continuing_spheres, step_pair};
 use crate::pair_store::{BLOCK, NO_CONTACT};
@@ -14,28 +14,6 @@ use flexdem_elements::virtual_sphere::{Feature, Kinematics, NodeLoad};
 use flexdem_elements::Model;
 use flexdem_geom::{Real, Vec3};
 use rayon::prelude::*;
-
-/// A pair whose dashpots pushed at the last update: its index, the dashpots' force on body
-/// 2, its moments about the two centres, and the law's own count of their dissipation.
-#[derive(Clone, Copy, Debug)]
-struct Pushed {
-    index: u32,
-    force: Vec3,
-    moments: [Vec3; 2],
-    viscous: Real,
-}
-
-impl Pushed {
-    /// The record of pair `index` if its dashpots pushed (as `step_pair` told in `law`).
-    fn of(index: usize, law: &LawOut) -> Option<Pushed> {
-        law.dashpot.map(|d| Pushed {
-            index: index as u32,
-            force: d.force,
-            moments: d.moments,
-            viscous: d.viscous,
-        })
-    }
-}
 
 /// Candidate pairs per chunk (fixed: the work is split the same way whatever the number of
 /// threads, and the sums are taken per chunk, then over the chunks in order).
@@ -151,26 +129,23 @@ struct ChunkBook {
 
 impl ChunkBook {
     /// Books the step of pair `n`: its outcome `o`, and when it touches after the step
-    /// (`contact`), its energy and, when its dashpots pushed, their record (from `law`, what
-    /// its law gave).
-    fn record(&mut self, n: usize, o: &PairOutcome, contact: Option<&PairContact>, law: &LawOut) {
+    /// (`contact`), its energy (`elastic`, what its law gave; the law has appended the
+    /// record of its dashpots).
+    fn record(&mut self, n: usize, o: &PairOutcome, contact: Option<&PairContact>, elastic: Real) {
         self.sums.add_outcome(o);
         if o.fresh {
             self.fresh.push(n);
         }
         if let Some(c) = contact {
-            self.record_continuing(n, c, law);
+            self.record_continuing(c, elastic);
         }
     }
 
-    /// Books the step of pair `n`, a contact `c` that went on (its outcome adds +0 to the
-    /// births' and ends' sums, which start at +0 and never reach −0: nothing to add).
+    /// Books the step of a contact `c` that went on (its outcome adds +0 to the births' and
+    /// ends' sums, which start at +0 and never reach −0: nothing to add).
     #[inline]
-    fn record_continuing(&mut self, n: usize, c: &PairContact, law: &LawOut) {
-        self.sums.add_touching(c, law.elastic);
-        if let Some(pushed) = Pushed::of(n, law) {
-            self.pushed.push(pushed);
-        }
+    fn record_continuing(&mut self, c: &PairContact, elastic: Real) {
+        self.sums.add_touching(c, elastic);
     }
 }
 
@@ -276,17 +251,19 @@ impl NeighbourList {
                         continue;
                     }
                     let block = &mut blocks[i / BLOCK];
-                    let mut law = LawOut::default();
+                    let mut law = LawOut::new(&mut out.book.pushed, base + i);
                     if let Some(loads) = continuing_spheres(p, key, slot, block, dt, &mut law) {
+                        let elastic = law.elastic;
                         let c = block.get(*slot).expect("a contact that goes on");
-                        out.book.record_continuing(base + i, c, &law);
+                        out.book.record_continuing(c, elastic);
                         positions[i] = out.outcomes.len() as u32;
                         out.outcomes.push(((base + i) as u32, PairLoads::of_loads(&loads)));
                         continue;
                     }
                     let mut o = PairOutcome::default();
                     step_pair(model, &k, key, slot, block, dt, &mut o, &mut law);
-                    out.book.record(base + i, &o, block.get(*slot), &law);
+                    let elastic = law.elastic;
+                    out.book.record(base + i, &o, block.get(*slot), elastic);
                     if *slot != NO_CONTACT {
                         positions[i] = out.outcomes.len() as u32;
                         out.outcomes.push(((base + i) as u32, PairLoads::of(&o)));
@@ -323,17 +300,19 @@ impl NeighbourList {
             }
             let block = &mut self.blocks[n / BLOCK];
             let out = &mut chunks[n / PAIR_CHUNK];
-            let mut law = LawOut::default();
+            let mut law = LawOut::new(&mut out.book.pushed, n);
             if let Some(loads) = continuing_spheres(p, key, slot, block, dt, &mut law) {
+                let elastic = law.elastic;
                 let c = block.get(*slot).expect("a contact that goes on");
-                out.book.record_continuing(n, c, &law);
+                out.book.record_continuing(c, elastic);
                 sink(Sink::Before(key));
                 loads.iter().for_each(|l| sink(Sink::Load(l)));
                 continue;
             }
             let mut o = PairOutcome::default();
             step_pair(model, &k, key, slot, block, dt, &mut o, &mut law);
-            out.book.record(n, &o, block.get(*slot), &law);
+            let elastic = law.elastic;
+            out.book.record(n, &o, block.get(*slot), elastic);
             if *slot != NO_CONTACT {
                 sink(Sink::Before(key));
                 let first = usize::from(matches!(key.0, Feature::Wall(_)));

@@ -9,7 +9,7 @@ use crate::contact::{
     birth_jump, geometry_of, law_kinematics, new_contact, sphere_touching, wall_touching,
 };
 use crate::dashpots::account_ended_springs;
-use crate::neighbours::{sites, AppliedForce, DashpotPush, LawOut, PairContact, PairOutcome};
+use crate::neighbours::{sites, AppliedForce, LawOut, PairContact, PairOutcome, Pushed};
 use crate::pair_keys::ContactKey;
 use crate::pair_store::{BlockContacts, NO_CONTACT};
 use flexdem_contact::update_frictional_contact;
@@ -45,7 +45,7 @@ pub(crate) fn continuing_spheres(
     slot: &u32,
     block: &mut BlockContacts<PairContact>,
     dt: Real,
-    law: &mut LawOut,
+    law: &mut LawOut<'_>,
 ) -> Option<[NodeLoad; 2]> {
     let (Feature::Particle(i), Feature::Particle(j)) = *key else { return None };
     let c = block.get_mut(*slot)?;
@@ -66,7 +66,7 @@ pub(crate) fn step_pair(
     block: &mut BlockContacts<PairContact>,
     dt: Real,
     out: &mut PairOutcome,
-    law: &mut LawOut,
+    law: &mut LawOut<'_>,
 ) {
     if let Some(loads) = continuing_spheres(&model.particles, key, slot, block, dt, law) {
         out.loads = loads;
@@ -150,7 +150,7 @@ fn apply_law(
     nodes: [u32; 2],
     centers: [Vec3; 2],
     dt: Real,
-    law: &mut LawOut,
+    law: &mut LawOut<'_>,
 ) -> [NodeLoad; 2] {
     let f = update_frictional_contact(&c.params, &mut c.state, &law_kinematics(g), dt);
     let on_1 = -f.force_on_2;
@@ -164,11 +164,14 @@ fn apply_law(
     ];
     let fd = f.dashpot_force;
     law.elastic = f.elastic_energy;
-    law.dashpot = (fd != Vec3::zeros()).then(|| DashpotPush {
-        force: fd,
-        moments: [(g.point - centers[0]).cross(&(-fd)), (g.point - centers[1]).cross(&fd)],
-        viscous: f.dissipated.viscous,
-    });
+    if fd != Vec3::zeros() {
+        law.pushed.push(Pushed::default());
+        let record = law.pushed.last_mut().expect("just pushed");
+        record.index = law.index;
+        record.force = fd;
+        record.moments = [(g.point - centers[0]).cross(&(-fd)), (g.point - centers[1]).cross(&fd)];
+        record.viscous = f.dissipated.viscous;
+    }
     c.applied = AppliedForce {
         normal_force: f.normal_force,
         shear_force: f.shear_force,
@@ -241,7 +244,8 @@ mod tests {
                 spin_about_normal: 0.5,
             };
             let f = update_frictional_contact(&params, &mut reference, &law_kinematics(&g), 1e-4);
-            let mut law = LawOut::default();
+            let mut pushed = vec![];
+            let mut law = LawOut::new(&mut pushed, 7);
             apply_law(&mut c, &g, [0, 1], [Vec3::zeros(), n * 0.2], 1e-4, &mut law);
             let made = c.forces();
             let case = format!("cn {cn}, ct {ct}, slip {slip}");
@@ -250,12 +254,18 @@ mod tests {
             assert_eq!(made.shear_force, f.shear_force, "{case}");
             assert_eq!(made.force_on_2, f.force_on_2, "{case}");
             assert_eq!(made.elastic_energy, f.elastic_energy, "{case}");
-            assert_eq!(law.elastic, f.elastic_energy, "{case}");
             assert_eq!(made.sliding, f.sliding, "{case}");
             assert_eq!(made.sliding, slip > 1.0, "{case}");
             let scale = f.force_on_2.norm();
             assert!((made.dashpot_force - f.dashpot_force).norm() <= 1e-14 * scale, "{case}");
-            assert_eq!(f.dashpot_force == Vec3::zeros(), law.dashpot.is_none(), "{case}");
+            let elastic = law.elastic;
+            assert_eq!(elastic, f.elastic_energy, "{case}");
+            assert_eq!(f.dashpot_force == Vec3::zeros(), pushed.is_empty(), "{case}");
+            if let [record] = pushed[..] {
+                assert_eq!(record.index, 7, "{case}");
+                assert_eq!(record.force, f.dashpot_force, "{case}");
+                assert_eq!(record.viscous, f.dissipated.viscous, "{case}");
+            }
             assert_eq!(cn == 0.0, f.dashpot_force == Vec3::zeros(), "{case}");
         }
     }
