@@ -97,6 +97,7 @@ impl Simulation {
         let dt = self.state.clock.dt;
         let previous =
             if self.state.clock.previous_dt > 0.0 { self.state.clock.previous_dt } else { dt };
+        self.pipeline.timers.begin();
         self.collision_stage();
         let appeared = self.contact_stage(previous);
         let link_sums = self.link_stage(previous);
@@ -106,7 +107,9 @@ impl Simulation {
         self.state.clock.previous_dt = dt;
         self.state.clock.time += dt;
         self.state.clock.steps += 1;
-        self.bookkeeping_stage(&work, load_work, &link_sums, dt, appeared)
+        let result = self.bookkeeping_stage(&work, load_work, &link_sums, dt, appeared);
+        self.pipeline.timers.end();
+        result
     }
 
     /// Bookkeeping after the step: the checks (NaN, a particle jumping), the energy terms,
@@ -119,19 +122,17 @@ impl Simulation {
         dt: Real,
         appeared: bool,
     ) -> Result<(), SimulationError> {
-        let t0 = self.pipeline.timers.start();
         let result = self.check_finite().and_then(|()| {
             self.account_energy(work, load_work, link_sums, dt);
             self.watch_energy()?;
             self.time_step_stage(appeared)
         });
-        self.pipeline.timers.stop(Stage::Bookkeeping, t0);
+        self.pipeline.timers.lap(Stage::Bookkeeping);
         result
     }
 
     /// Collision: rebuilds the candidate pairs when a particle has moved beyond its margin.
     fn collision_stage(&mut self) {
-        let t0 = self.pipeline.timers.start();
         if self.pipeline.collider.needs_rebuild(&self.state.model) {
             let collider = &mut self.pipeline.collider;
             collider.rebuild(&self.state.model);
@@ -139,13 +140,12 @@ impl Simulation {
             let spheres = std::mem::take(&mut collider.sphere_pairs);
             self.state.contacts.pairs.rebuild(spheres, &collider.sphere_wall_pairs);
         }
-        self.pipeline.timers.stop(Stage::Collision, t0);
+        self.pipeline.timers.lap(Stage::Collision);
     }
 
     /// Contacts: detection, births, the contact law, node loads (forces reset first).
     /// Returns whether contacts appeared.
     fn contact_stage(&mut self, dt: Real) -> bool {
-        let t0 = self.pipeline.timers.start();
         let zero = |v: &mut Vec<Vec3>| {
             v.par_iter_mut().with_min_len(8 * MIN_PARALLEL_CHEAP).for_each(|x| *x = Vec3::zeros())
         };
@@ -181,16 +181,15 @@ impl Simulation {
         self.state.contacts.born_deep += pairs.born_deep;
         let appeared = self.state.contacts.len() > before;
         self.account_new_contacts();
-        self.pipeline.timers.stop(Stage::Contacts, t0);
+        self.pipeline.timers.lap(Stage::Contacts);
         appeared
     }
 
     /// Links: every beam link, loads summed per node.
     fn link_stage(&mut self, dt: Real) -> LinkUpdate {
-        let t0 = self.pipeline.timers.start();
         let sums = self.state.links.update(&self.state.model.particles, dt);
         self.state.links.add_loads(&mut self.pipeline.force, &mut self.pipeline.torque);
-        self.pipeline.timers.stop(Stage::Links, t0);
+        self.pipeline.timers.lap(Stage::Links);
         sums
     }
 
@@ -203,7 +202,6 @@ impl Simulation {
         if !self.is_loaded() {
             return 0.0;
         }
-        let t0 = self.pipeline.timers.start();
         // zeroed, and sized here: a scene without loads holds no memory for them
         let n = self.state.model.particles.len();
         for sums in [&mut self.pipeline.external_force, &mut self.pipeline.external_torque] {
@@ -236,7 +234,7 @@ impl Simulation {
             *t += e;
         }
         let work = self.external_power() * 0.5 * previous;
-        self.pipeline.timers.stop(Stage::Loads, t0);
+        self.pipeline.timers.lap(Stage::Loads);
         work
     }
 
@@ -254,7 +252,6 @@ impl Simulation {
     /// velocities they move with over the step after: the two halves of their trapezoidal
     /// work (timed with the integration, which moves the walls).
     fn wall_stage(&mut self, dt: Real) -> WallPower {
-        let t0 = self.pipeline.timers.start();
         let walls = self.state.model.walls.len();
         self.pipeline.walls.sum(&self.state.contacts, walls);
         let before = self.wall_power();
@@ -266,7 +263,7 @@ impl Simulation {
             dt,
         );
         let after = if steered { self.wall_power() } else { before };
-        self.pipeline.timers.stop(Stage::Integration, t0);
+        self.pipeline.timers.lap(Stage::Integration);
         WallPower { before, after }
     }
 
@@ -276,7 +273,6 @@ impl Simulation {
     /// velocities the walls moved with then) and `walls.after·dt/2` over the step after (with
     /// the velocities they move with now, which a servo may have just changed).
     fn integration_stage(&mut self, previous: Real, dt: Real, walls: WallPower) -> StepWork {
-        let t0 = self.pipeline.timers.start();
         let g = self.state.settings.gravity;
         let step = Leapfrog { gravity: g, damping: self.state.settings.damping, previous, dt };
         let mut work = leapfrog_step(
@@ -297,7 +293,7 @@ impl Simulation {
         for wall in &mut self.state.model.walls {
             wall.point += wall.velocity * dt;
         }
-        self.pipeline.timers.stop(Stage::Integration, t0);
+        self.pipeline.timers.lap(Stage::Integration);
         work
     }
 

@@ -1,5 +1,9 @@
 //! Per-stage wall-clock timers (collision, contacts, links, loads, integration, bookkeeping),
 //! as rapier's counters: a run reports where its time goes.
+//!
+//! The clock is read once at the start of a step and once at the end of each stage, whose
+//! time is the lap since the read before: a read costs about 25 ns here (a third of the step
+//! of a one-sphere scene when every stage read it twice).
 
 use std::time::{Duration, Instant};
 
@@ -23,6 +27,8 @@ pub enum Stage {
 /// Accumulated time per stage.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Timers {
+    /// The last read of the clock in this step (none between steps).
+    mark: Option<Instant>,
     /// Broad phase.
     pub collision: Duration,
     /// Contacts.
@@ -38,14 +44,18 @@ pub struct Timers {
 }
 
 impl Timers {
-    /// Starts timing a stage.
-    pub fn start(&self) -> Instant {
-        Instant::now()
+    /// Starts the laps of a step.
+    pub(crate) fn begin(&mut self) {
+        self.mark = Some(Instant::now());
     }
 
-    /// Adds the time since `start` to `stage`.
-    pub fn stop(&mut self, stage: Stage, start: Instant) {
-        let d = start.elapsed();
+    /// Adds the time since the last read of this step to `stage` (the time from the start of
+    /// the step, or from the end of the stage before: a stage that did not run gives its
+    /// check's nanoseconds to the next).
+    pub(crate) fn lap(&mut self, stage: Stage) {
+        let now = Instant::now();
+        let d = self.mark.map_or(Duration::ZERO, |m| now.duration_since(m));
+        self.mark = Some(now);
         match stage {
             Stage::Collision => self.collision += d,
             Stage::Contacts => self.contacts += d,
@@ -53,6 +63,24 @@ impl Timers {
             Stage::Loads => self.loads += d,
             Stage::Integration => self.integration += d,
             Stage::Bookkeeping => self.bookkeeping += d,
+        }
+    }
+
+    /// Ends the laps of a step: the time until the next step is no stage's.
+    pub(crate) fn end(&mut self) {
+        self.mark = None;
+    }
+
+    /// The time each stage took since `before` (an earlier copy of these timers).
+    pub fn since(&self, before: &Timers) -> Timers {
+        Timers {
+            mark: None,
+            collision: self.collision.saturating_sub(before.collision),
+            contacts: self.contacts.saturating_sub(before.contacts),
+            links: self.links.saturating_sub(before.links),
+            loads: self.loads.saturating_sub(before.loads),
+            integration: self.integration.saturating_sub(before.integration),
+            bookkeeping: self.bookkeeping.saturating_sub(before.bookkeeping),
         }
     }
 
