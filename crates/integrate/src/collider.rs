@@ -29,12 +29,11 @@
 //! swept element is at a node).
 
 use crate::broad_phase::BroadPhase;
-use crate::parallel::MIN_PARALLEL_CHEAP;
+use crate::parallel::any_index;
 use crate::prefilter::hull;
 use flexdem_elements::touching::Element;
 use flexdem_elements::{Model, ParticleKind};
 use flexdem_geom::{aabb_sphere, aabb_swept_segment, aabb_swept_triangle, Real, Vec3};
-use rayon::prelude::*;
 
 /// Size of an element: the radius of a sphere holding it in its current configuration.
 fn element_size(model: &Model, e: Element) -> Real {
@@ -182,10 +181,9 @@ impl Collider {
             .iter()
             .zip(&self.wall_reference)
             .any(|(w, r)| (w.point - r).norm_squared() > wall_limit)
-            || (0..p.len())
-                .into_par_iter()
-                .with_min_len(MIN_PARALLEL_CHEAP)
-                .any(|i| (p.pos[i] - self.reference[i]).norm_squared() > limits[i] * limits[i])
+            || any_index(p.len(), |i| {
+                (p.pos[i] - self.reference[i]).norm_squared() > limits[i] * limits[i]
+            })
     }
 
     /// Mask of an element.
