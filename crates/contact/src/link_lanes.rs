@@ -136,12 +136,11 @@ pub fn update_link_lanes(
     let v2 = V3::gather(|j| at.vel[n2[j]]);
     let us = v2.minus(v1).minus(w12.cross(n).scale(half * l));
     let us = us.minus(n.scale(n.dot(us)));
-    let alpha = lanes(|j| match classes[j].mode {
-        LinkKinematicsMode::Yade if l.to_array()[j] > 0.0 => {
-            2.0 * classes[j].radius * inv_l.to_array()[j]
-        }
-        _ => 1.0,
-    });
+    // YADE's shear factor 2R/L where L > 0, else 1
+    let yade = lanes(|j| Real::from(u8::from(classes[j].mode == LinkKinematicsMode::Yade)));
+    let radius = lanes(|j| classes[j].radius);
+    let alpha =
+        (yade.simd_gt(zero) & l.simd_gt(zero)).select(f64x4::splat(2.0) * radius * inv_l, one);
     let kn = lanes(|j| springs[j].stiffness.kn);
     let ks = lanes(|j| springs[j].stiffness.ks) * alpha;
     let kt = lanes(|j| springs[j].stiffness.kt);
@@ -163,7 +162,9 @@ pub fn update_link_lanes(
     }
     let q2 = quat(|j| at.ori[n2[j]]);
     let r = quat(|j| states[j].rest_rotation);
-    let q1_inv = quat(|j| at.ori[n1[j]].inverse());
+    // (a unit quaternion's inverse is its conjugate: the same negations as nalgebra's)
+    let q1 = quat(|j| at.ori[n1[j]]);
+    let q1_inv = Q4 { w: q1.w, i: -q1.i, j: -q1.j, k: -q1.k };
     let q = q2.times(r).times(q1_inv);
     let qv = V3 { x: q.i, y: q.j, z: q.k };
     let s2 = qv.norm_squared();
