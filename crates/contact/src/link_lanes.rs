@@ -211,21 +211,23 @@ pub fn update_link_lanes(
     let m = mt.plus(mb);
 
     // lanes that stay on the path: checked as the scalar law branches
-    let (l, one_plus, angle) = (l.to_array(), one_plus.to_array(), angle.to_array());
-    let s2 = s2.to_array();
+    // the scalar law's own checks, in the lanes: a positive length, a normal not flipped
+    // where there is a shear force, and (a NaN goes the scalar way, whose checks name it) a
+    // finite turn and relative rotation (|x| < ∞ is false for a NaN)
+    let infinite = f64x4::splat(Real::INFINITY);
+    let sane = (l.simd_gt(zero)
+        & (mag2.simd_eq(zero) | one_plus.simd_ge(f64x4::splat(1e-12)))
+        & angle.abs().simd_lt(infinite)
+        & s2.abs().simd_lt(infinite))
+    .to_bitmask();
     let fn_ = fn_.to_array();
     let (fs2, mt2, mb2, e) = (fs2.to_array(), mt2.to_array(), mb2.to_array(), e.to_array());
-    let mag2 = mag2.to_array();
     let mut taken = 0;
     for j in 0..LANES {
         let lim = &classes[j].strength;
         let exceeds = |mag2: Real, cap: Real| cap < 0.0 || mag2 > cap * cap;
         let stays = ok[j]
-            && l[j] > 0.0
-            && (mag2[j] == 0.0 || one_plus[j] >= 1e-12)
-            // (a NaN goes the scalar way, whose checks name it)
-            && angle[j].is_finite()
-            && s2[j].is_finite()
+            && sane & (1 << j) != 0
             && !lim.tensile_force.is_some_and(|tmax| -fn_[j] > tmax)
             && !lim.shear_limit(fn_[j]).is_some_and(|c| exceeds(fs2[j], c))
             && !lim.twist_moment.is_some_and(|c| exceeds(mt2[j], c))
@@ -363,6 +365,25 @@ mod tests {
             kin[3].q2 = UnitQuaternion::new_unchecked(-kin[3].q2.into_inner());
             assert_eq!(compare(&[a.0, b.0, c.0, d.0], &kin, dt), LANES, "{mode:?}");
         }
+    }
+
+    /// Lanes off the path by the scalar law's own checks (a NaN spin, coincident nodes, a
+    /// shear force whose normal flipped) are left to it, untouched; the fourth takes the path.
+    #[test]
+    fn nan_coincident_and_flipped_lanes_are_left_to_the_scalar_law() {
+        let dt = 1e-5;
+        let pre = [Vec3::new(1e-4, 0.0, 0.0), Vec3::y() * 1e-4, Vec3::y() * 1e-4, Vec3::z() * 1e-4];
+        let v = [Vec3::new(0.01, -0.02, 0.005), Vec3::new(-0.01, 0.03, 0.0)];
+        let w = [Vec3::new(0.1, 0.2, -0.1), Vec3::new(-0.3, 0.1, 0.2)];
+        let mode = LinkKinematicsMode::Yade;
+        let [a, b, mut c, d] =
+            std::array::from_fn(|_| loaded(Vec3::x(), mode, true, &pre, v, w, dt));
+        let mut kin = [a.1, b.1, c.1, d.1];
+        kin[0].w2 = Vec3::new(Real::NAN, 0.0, 0.0);
+        kin[1].x2 = kin[1].x1;
+        assert_ne!(c.0.s.shear_force, Vec3::zeros());
+        c.0.s.normal = -(kin[2].x2 - kin[2].x1).normalize();
+        assert_eq!(compare(&[a.0, b.0, c.0, d.0], &kin, dt), 1);
     }
 
     proptest! {
