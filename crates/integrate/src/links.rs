@@ -357,9 +357,9 @@ impl Links {
                     };
                     for j in 0..count {
                         if taken & (1 << j) != 0 {
-                            // (no event, nothing dissipated: the sum gains +0)
+                            // (no event, nothing dissipated: the sum would gain +0, which
+                            // changes no bit of a sum started at +0, never −0)
                             sums.elastic_energy += energy[j];
-                            sums.dissipated += 0.0;
                             continue;
                         }
                         let i = k + j;
@@ -413,13 +413,13 @@ impl Links {
                 let (s, e) = (self.node_offsets[i] as usize, self.node_offsets[i + 1] as usize);
                 for &code in &self.node_loads[s..e] {
                     let l = &self.loads[(code / 2) as usize];
-                    if code % 2 == 0 {
-                        *f -= l.force_on_2;
-                        *t += l.lever_torque - l.moment_on_2;
-                    } else {
-                        *f += l.force_on_2;
-                        *t += l.lever_torque + l.moment_on_2;
-                    }
+                    // node 1 (even code) takes −F and L − M, node 2 F and L + M: as a sign
+                    // s = ∓1 and no branch (which node a link's load goes to is as good as
+                    // random from one to the next); F·(−1) = −F exactly, and x + (−y) is
+                    // x − y, so the sums have the bits of the two-way form
+                    let s = Real::from(code % 2) * 2.0 - 1.0;
+                    *f += l.force_on_2 * s;
+                    *t += l.lever_torque + l.moment_on_2 * s;
                 }
             });
     }
