@@ -29,11 +29,12 @@
 //! swept element is at a node).
 
 use crate::broad_phase::BroadPhase;
-use crate::parallel::any_index;
+use crate::parallel::any_zipped;
 use crate::prefilter::hull;
 use flexdem_elements::touching::Element;
 use flexdem_elements::{Model, ParticleKind};
 use flexdem_geom::{aabb_sphere, aabb_swept_segment, aabb_swept_triangle, Real, Vec3};
+use rayon::prelude::*;
 
 /// Size of an element: the radius of a sphere holding it in its current configuration.
 fn element_size(model: &Model, e: Element) -> Real {
@@ -181,9 +182,11 @@ impl Collider {
             .iter()
             .zip(&self.wall_reference)
             .any(|(w, r)| (w.point - r).norm_squared() > wall_limit)
-            || any_index(p.len(), |i| {
-                (p.pos[i] - self.reference[i]).norm_squared() > limits[i] * limits[i]
-            })
+            || any_zipped(
+                p.pos.iter().zip(&self.reference).zip(limits),
+                p.pos.par_iter().zip(&self.reference).zip(limits),
+                |((x, x0), &limit)| (x - x0).norm_squared() > limit * limit,
+            )
     }
 
     /// Mask of an element.

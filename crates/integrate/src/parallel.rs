@@ -10,33 +10,45 @@ pub(crate) const MIN_PARALLEL_CHEAP: usize = 1024;
 /// law, up to a microsecond each).
 pub(crate) const MIN_PARALLEL_COSTLY: usize = 64;
 
-/// Below this many items [`any_index`] scans on this thread: a small scene's check costs
+/// Below this many items [`any_zipped`] scans on this thread: a small scene's check costs
 /// less than sending it to rayon (the bridge, the shared stop flag read per item).
 const SEQUENTIAL_SCAN: usize = 4 * MIN_PARALLEL_CHEAP;
 
-/// Whether `f(i)` holds for some i in `0..n`: a scan of every item without early exit (no
-/// branch per item, so the compiler may vectorize it) below [`SEQUENTIAL_SCAN`] items, rayon's
-/// `any` in chunks of [`MIN_PARALLEL_CHEAP`] above. For the per-step checks of every particle,
-/// where the answer is almost always no.
-pub(crate) fn any_index(n: usize, f: impl Fn(usize) -> bool + Sync + Send) -> bool {
+/// Whether `bad` holds for some item of `seq`, the same items as `par` (slices zipped, one
+/// iterator of each kind): a scan of every item without early exit and without indices (no
+/// branch and no bounds check per item: the compiler may vectorize it) below
+/// [`SEQUENTIAL_SCAN`] items, rayon's `any` on `par` in chunks of [`MIN_PARALLEL_CHEAP`] above.
+/// For the per-step checks of every particle, where the answer is almost always no.
+pub(crate) fn any_zipped<S, P>(seq: S, par: P, bad: impl Fn(S::Item) -> bool + Sync + Send) -> bool
+where
+    S: ExactSizeIterator,
+    P: rayon::iter::IndexedParallelIterator<Item = S::Item>,
+{
     use rayon::prelude::*;
-    if n < SEQUENTIAL_SCAN {
-        (0..n).fold(false, |found, i| found | f(i))
+    if seq.len() < SEQUENTIAL_SCAN {
+        seq.fold(false, |found, item| found | bad(item))
     } else {
-        (0..n).into_par_iter().with_min_len(MIN_PARALLEL_CHEAP).any(f)
+        par.with_min_len(MIN_PARALLEL_CHEAP).any(bad)
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use rayon::prelude::*;
 
     #[test]
-    fn any_index_finds_one_item_on_both_sides_of_the_switch() {
+    fn any_zipped_finds_one_item_on_both_sides_of_the_switch() {
         for n in [0, 1, 7, SEQUENTIAL_SCAN - 1, SEQUENTIAL_SCAN, 3 * SEQUENTIAL_SCAN + 5] {
-            assert!(!any_index(n, |_| false), "{n}");
+            let (a, b): (Vec<usize>, Vec<usize>) =
+                ((0..n).collect(), (0..n).map(|i| 2 * i).collect());
+            let any = |hit: Option<usize>| {
+                let bad = |(x, y): (&usize, &usize)| Some(*x) == hit && *y == 2 * *x;
+                any_zipped(a.iter().zip(&b), a.par_iter().zip(&b), bad)
+            };
+            assert!(!any(None), "{n}");
             for hit in [0, n / 2, n.saturating_sub(1)].into_iter().filter(|&h| h < n) {
-                assert!(any_index(n, |i| i == hit), "{n}: {hit}");
+                assert!(any(Some(hit)), "{n}: {hit}");
             }
         }
     }

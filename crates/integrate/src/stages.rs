@@ -9,7 +9,7 @@ use crate::integrator::{leapfrog_step, Leapfrog, StepWork};
 use crate::links::LinkUpdate;
 use crate::neighbours::{merged_fresh, sites, Pick};
 use crate::offsets::release_offsets;
-use crate::parallel::{any_index, MIN_PARALLEL_CHEAP};
+use crate::parallel::{any_zipped, MIN_PARALLEL_CHEAP};
 use crate::pressure::add_pressure_forces;
 use crate::servo::steer_walls;
 use crate::settings::TimeStep;
@@ -500,10 +500,14 @@ impl Simulation {
         // one cheap pass (no root, no division) flags a step with a non-finite value or a
         // particle beyond its reach; only then are the culprits sought
         let dt2 = dt * dt;
-        let flagged = any_index(p.len(), |i| {
-            let sum = p.pos[i].sum() + p.vel[i].sum() + p.ang_vel[i].sum();
-            !(sum.is_finite() && p.vel[i].norm_squared() * dt2 <= reach[i] * reach[i])
-        });
+        let flagged = any_zipped(
+            p.pos.iter().zip(&p.vel).zip(&p.ang_vel).zip(reach),
+            p.pos.par_iter().zip(&p.vel).zip(&p.ang_vel).zip(reach),
+            |(((x, v), w), &reach)| {
+                let sum = x.sum() + v.sum() + w.sum();
+                !(sum.is_finite() && v.norm_squared() * dt2 <= reach * reach)
+            },
+        );
         if !flagged {
             return Ok(());
         }
