@@ -1,13 +1,17 @@
 //! Four particles advanced at once (`flexdem_geom::lanes`: SIMD with nalgebra's formulas
-//! term for term), the leapfrog of `integrator.rs` with the same bits: each lane's velocity,
-//! position and orientation are computed by the same operations in the same order, and the
-//! energy terms, computed four at a time, are added to the sums one by one in the scalar
-//! loop's order (particle by particle, translation then rotation, component by component, the
-//! free components before the blocked ones). A blocked DOF's lane computes the free kick too
-//! and keeps its velocity by a select; a particle whose rotations are all blocked and at rest
-//! adds no rotational term, as the scalar loop skips it. A turn beyond the series of
-//! `turn_quaternion` and a product off unit norm by more than the Newton step's range are
-//! made for that lane by the scalar functions.
+//! term for term), the leapfrog of `integrator.rs` with the same bits for every state: each
+//! lane's velocity, position and orientation are computed by the same operations in the same
+//! order. A blocked DOF's lane computes the free kick too and keeps its velocity by a select.
+//! A turn beyond the series of `turn_quaternion` and a product off unit norm by more than the
+//! Newton step's range are made for that lane by the scalar functions.
+//!
+//! The energy terms are summed lane by lane ([`LaneSums`], one vector add per term and
+//! component), and the four lanes into the chunk's sums at its end: the order of the
+//! additions is not the scalar loop's, so the energy terms differ from a one-by-one sum by
+//! round-off (the same whatever the number of threads: the chunks are fixed). A term the
+//! scalar loop does not add (a blocked component's kick, a free component's support work,
+//! the rotation of a particle whose rotations are all blocked and at rest, a lane past the
+//! batch) is made +0 by a select, which leaves a sum as it is.
 
 use crate::step_work::StepWork;
 use crate::turn::{half_turn_series, turn_quaternion, SERIES_TURN};
@@ -75,15 +79,15 @@ pub(crate) struct Chunk<'a> {
 
 /// Advances the particles `idx[..count]` of chunk `p` (`count` from 1 to 4, any blocked
 /// DOFs; the lanes past `count` repeat a particle and are dropped) by one leapfrog step, as
-/// `leapfrog_step` advances each, adding their energy terms to `work` in its order (particle
-/// by particle, in the order of `idx`). `HELD` false is for four particles with no blocked
-/// DOF (the caller checks): their code is then the one without selects and their terms.
+/// `leapfrog_step` advances each, adding their energy terms to `sums` lane by lane. `HELD`
+/// false is for four particles with no blocked DOF (the caller checks): their code is then
+/// the one without selects and their terms.
 pub(crate) fn leapfrog_four<const HELD: bool>(
     p: &mut Chunk<'_>,
     idx: [usize; 4],
     count: usize,
     k: &Kick,
-    work: &mut StepWork,
+    sums: &mut LaneSums,
 ) {
     let Chunk { pos, vel, ori, ang, mass, inertia, f, t, blocked } = p;
     let held = if HELD { idx.map(|i| blocked[i]) } else { [Dofs::NONE; 4] };
@@ -196,49 +200,54 @@ pub(crate) fn leapfrog_four<const HELD: bool>(
     let (n2, w, qi, jj, kk) =
         (n2.to_array(), q.w.to_array(), q.i.to_array(), q.j.to_array(), q.k.to_array());
 
-    // written back, and the sums in the scalar loop's order
-    // a free component's terms, translation and rotation
-    let free_translation = |c: usize, l: usize, work: &mut StepWork| {
-        work.kinetic_translation += kinetic[c].as_array()[l];
+    // the energy terms, lane by lane: kept where the scalar loop adds them, +0 elsewhere
+    let live = if count == 4 {
+        None
+    } else {
+        Some(f64x4::new(std::array::from_fn(|l| Real::from(u8::from(l < count)))).simd_gt(zero))
+    };
+    let keep = |m: Option<f64x4>, x: f64x4| m.map_or(x, |m| m.select(x, zero));
+    let both = |a: Option<f64x4>, b: f64x4| Some(a.map_or(b, |a| a & b));
+    // (rotations all blocked and at rest: the scalar loop leaves them alone)
+    let turning = if any_held {
+        let rest =
+            (mask(Dofs::ROTATION) & w0.x.simd_eq(zero) & w0.y.simd_eq(zero)) & w0.z.simd_eq(zero);
+        both(live, !rest)
+    } else {
+        live
+    };
+    let axes = [(Dofs::X, Dofs::RX), (Dofs::Y, Dofs::RY), (Dofs::Z, Dofs::RZ)];
+    for (c, (dt_c, dr_c)) in axes.into_iter().enumerate() {
+        let (free_t, free_r) = if any_held {
+            (both(live, !mask(dt_c)), both(turning, !mask(dr_c)))
+        } else {
+            (live, turning)
+        };
+        sums.kinetic_translation += keep(free_t, kinetic[c]);
         if gs[c] != 0.0 {
-            work.gravity += gravity[c].as_array()[l];
+            sums.gravity += keep(free_t, gravity[c]);
         }
+        sums.kinetic_rotation += keep(free_r, kinetic_rot[c]);
         if !k.undamped {
-            work.damping += damping[c].as_array()[l];
-            work.damping_next += damping_next[c].as_array()[l];
+            sums.damping += keep(free_t, damping[c]) + keep(free_r, rot_damping[c]);
+            sums.damping_next += keep(free_t, damping_next[c]) + keep(free_r, rot_damping_next[c]);
         }
-    };
-    let free_rotation = |c: usize, l: usize, work: &mut StepWork| {
-        work.kinetic_rotation += kinetic_rot[c].as_array()[l];
-        if !k.undamped {
-            work.damping += rot_damping[c].as_array()[l];
-            work.damping_next += rot_damping_next[c].as_array()[l];
+        if let (Some(ht), Some(hr)) = (&held_translation, &held_rotation) {
+            let (held_t, held_r) = (both(live, mask(dt_c)), both(turning, mask(dr_c)));
+            sums.kinetic_translation += keep(held_t, ht.kinetic[c]);
+            sums.kinetic_rotation += keep(held_r, hr.kinetic[c]);
+            sums.boundary -= keep(held_t, ht.before[c]) + keep(held_r, hr.before[c]);
+            sums.boundary_next -= keep(held_t, ht.after[c]) + keep(held_r, hr.after[c]);
         }
-    };
+    }
+
+    // written back
     for l in 0..count {
-        let (i, b) = (idx[l], held[l]);
+        let i = idx[l];
         vel[i] = v1.lane(l);
         pos[i] = x1.lane(l);
         // (a lane whose rotations are all blocked keeps its angular velocity: the same bits)
         ang[i] = w1.lane(l);
-        if !HELD || b.is_empty() {
-            (0..3).for_each(|c| free_translation(c, l, work));
-            (0..3).for_each(|c| free_rotation(c, l, work));
-        } else {
-            // the free components' terms, then the blocked ones'
-            let (t, r) = (|c| b.contains(Dofs::translation(c)), |c| b.contains(Dofs::rotation(c)));
-            (0..3).filter(|&c| !t(c)).for_each(|c| free_translation(c, l, work));
-            if let Some(s) = &held_translation {
-                s.add(l, t, |w| &mut w.kinetic_translation, work);
-            }
-            // (rotations blocked and at rest: the scalar loop leaves them alone)
-            if !(b.contains(Dofs::ROTATION) && w0.lane(l) == Vec3::zeros()) {
-                (0..3).filter(|&c| !r(c)).for_each(|c| free_rotation(c, l, work));
-                if let Some(s) = &held_rotation {
-                    s.add(l, r, |w| &mut w.kinetic_rotation, work);
-                }
-            }
-        }
         if turn.lane(l) != Vec3::zeros() {
             ori[i] = if (n2[l] - 1.0).abs() < 1e-8 {
                 UnitQuaternion::new_unchecked(Quaternion::new(w[l], qi[l], jj[l], kk[l]))
@@ -260,22 +269,44 @@ struct Supports {
     after: [f64x4; 3],
 }
 
-impl Supports {
-    /// Adds lane `l`'s terms of the components `blocked` says, in component order: to the
-    /// kinetic sum `kinetic` picks and to the supports' sums of `work`.
-    fn add(
-        &self,
-        l: usize,
-        blocked: impl Fn(usize) -> bool,
-        kinetic: fn(&mut StepWork) -> &mut Real,
-        work: &mut StepWork,
-    ) {
-        for c in 0..3 {
-            if blocked(c) {
-                *kinetic(work) += self.kinetic[c].as_array()[l];
-                work.boundary -= self.before[c].as_array()[l];
-                work.boundary_next -= self.after[c].as_array()[l];
-            }
+/// The energy terms of a chunk's four-particle batches, summed lane by lane (the fields of
+/// [`StepWork`] that the leapfrog fills).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct LaneSums {
+    kinetic_translation: f64x4,
+    kinetic_rotation: f64x4,
+    gravity: f64x4,
+    damping: f64x4,
+    damping_next: f64x4,
+    boundary: f64x4,
+    boundary_next: f64x4,
+}
+
+impl Default for LaneSums {
+    fn default() -> Self {
+        let zero = f64x4::splat(0.0);
+        LaneSums {
+            kinetic_translation: zero,
+            kinetic_rotation: zero,
+            gravity: zero,
+            damping: zero,
+            damping_next: zero,
+            boundary: zero,
+            boundary_next: zero,
         }
+    }
+}
+
+impl LaneSums {
+    /// Adds the four lanes of each sum to `work`, lane 0 first.
+    pub(crate) fn add_to(&self, work: &mut StepWork) {
+        let total = |x: f64x4| x.to_array().iter().fold(0.0, |a, &b| a + b);
+        work.kinetic_translation += total(self.kinetic_translation);
+        work.kinetic_rotation += total(self.kinetic_rotation);
+        work.gravity += total(self.gravity);
+        work.damping += total(self.damping);
+        work.damping_next += total(self.damping_next);
+        work.boundary += total(self.boundary);
+        work.boundary_next += total(self.boundary_next);
     }
 }
