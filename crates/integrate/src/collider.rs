@@ -177,6 +177,7 @@ impl Collider {
         }
         let wall_limit = self.wall_limit * self.wall_limit;
         let limits = &self.limits;
+        debug_assert_eq!(limits.len(), p.len());
         model
             .walls
             .iter()

@@ -95,8 +95,8 @@ fn leapfrog_step_lanes(
             let mut p = Chunk { pos, vel, ori, ang, mass, inertia, f, t, blocked };
             // the batches' energy terms, lane by lane, added to `work` at the chunk's end
             let mut sums = LaneSums::default();
-            // four particles at a time (`integrator_lanes.rs`: the same bits, blocked DOFs
-            // or not), in order with the others: a particle with every DOF blocked (a
+            // four particles at a time (`integrator_lanes.rs`: the same state bits, blocked
+            // DOFs or not; the energy terms to round-off), in order with the others: a particle with every DOF blocked (a
             // support: the scalar way is a few additions), or one left alone, goes the
             // scalar way after the batched ones before it
             let mut batch = [0usize; 4];
@@ -184,12 +184,10 @@ fn leapfrog_one(p: &mut Chunk<'_>, i: usize, step: &Kick, work: &mut StepWork) {
             work.damping_next += mass[i] * (a_free - a) * 0.5 * v1 * kick;
         }
     }
-    for k in 0..3 {
-        if b.contains(Dofs::translation(k)) {
-            work.kinetic_translation += 0.5 * mass[i] * vel[i][k] * vel[i][k];
-            work.boundary -= 0.5 * f[i][k] * vel[i][k] * previous;
-            work.boundary_next -= 0.5 * f[i][k] * vel[i][k] * dt;
-        }
+    for k in (0..3).filter(|&k| b.contains(Dofs::translation(k))) {
+        let kinetic = &mut work.kinetic_translation;
+        let supports = (&mut work.boundary, &mut work.boundary_next);
+        add_support_terms(kinetic, supports, mass[i], f[i][k], vel[i][k], previous, dt);
     }
     pos[i] += vel[i] * dt;
     if !b.contains(Dofs::ROTATION) || ang[i] != Vec3::zeros() {
@@ -209,12 +207,10 @@ fn leapfrog_one(p: &mut Chunk<'_>, i: usize, step: &Kick, work: &mut StepWork) {
                 work.damping_next += inertia[i] * (a_free - a) * 0.5 * w1 * kick;
             }
         }
-        for k in 0..3 {
-            if b.contains(Dofs::rotation(k)) {
-                work.kinetic_rotation += 0.5 * inertia[i] * ang[i][k] * ang[i][k];
-                work.boundary -= 0.5 * t[i][k] * ang[i][k] * previous;
-                work.boundary_next -= 0.5 * t[i][k] * ang[i][k] * dt;
-            }
+        for k in (0..3).filter(|&k| b.contains(Dofs::rotation(k))) {
+            let kinetic = &mut work.kinetic_rotation;
+            let supports = (&mut work.boundary, &mut work.boundary_next);
+            add_support_terms(kinetic, supports, inertia[i], t[i][k], ang[i][k], previous, dt);
         }
         let turn = ang[i] * dt;
         if turn != Vec3::zeros() {
@@ -222,6 +218,26 @@ fn leapfrog_one(p: &mut Chunk<'_>, i: usize, step: &Kick, work: &mut StepWork) {
             ori[i] = renormalized(q.into_inner());
         }
     }
+}
+
+/// The energy terms of a blocked component (velocity `v` kept, `p` the mass or the moment of
+/// inertia, `f` the force or torque its support cancels): the kinetic ½p·v·v, and the
+/// support's work −½f·v·dt₀ and −½f·v·dt subtracted from `supports` (the halves over the step
+/// before and the step after, `StepWork::boundary` and `boundary_next`).
+#[allow(clippy::too_many_arguments, reason = "one component's terms and their three sums")]
+#[inline]
+fn add_support_terms(
+    kinetic: &mut Real,
+    supports: (&mut Real, &mut Real),
+    p: Real,
+    f: Real,
+    v: Real,
+    previous: Real,
+    dt: Real,
+) {
+    *kinetic += 0.5 * p * v * v;
+    *supports.0 -= 0.5 * f * v * previous;
+    *supports.1 -= 0.5 * f * v * dt;
 }
 
 /// Kinetic energy, translational and rotational, summed in a fixed order.

@@ -500,6 +500,8 @@ impl Simulation {
         // one cheap pass (no root, no division) flags a step with a non-finite value or a
         // particle beyond its reach; only then are the culprits sought
         let dt2 = dt * dt;
+        // (the collision stage sized the reaches to the particles: a zip checks them all)
+        debug_assert_eq!(reach.len(), p.len());
         let flagged = any_zipped(
             p.pos.iter().zip(&p.vel).zip(&p.ang_vel).zip(reach),
             p.pos.par_iter().zip(&p.vel).zip(&p.ang_vel).zip(reach),

@@ -2,8 +2,8 @@
 //! as rapier's counters: a run reports where its time goes.
 //!
 //! The clock is read once at the start of a step and once at the end of each stage, whose
-//! time is the lap since the read before: a read costs about 25 ns here (a third of the step
-//! of a one-sphere scene when every stage read it twice).
+//! time is the lap since the read before: a read costs about 25 ns here (47 % of the perf
+//! samples of a one-sphere scene when every stage read it twice, 27 % since).
 
 use std::time::{Duration, Instant};
 
