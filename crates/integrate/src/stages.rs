@@ -3,7 +3,7 @@
 //! unstable and the time step.
 
 use crate::culprit::describe;
-use crate::dashpots::damped_stiffness_factor;
+use crate::dashpots::FactorMemo;
 use crate::energy::PendingWork;
 use crate::integrator::{leapfrog_step, Leapfrog, StepWork};
 use crate::links::LinkUpdate;
@@ -55,8 +55,9 @@ impl Simulation {
                 k.add(i, &n, s.kn, s.ks, 0.5 * len, s.kt, s.kb);
             }
         }
+        let mut memo = Default::default();
         self.state.contacts.for_each_law(&self.state.model, |site1, site2, params, normal| {
-            add_contact_stiffness(&mut k, [site1, site2], params, normal, p)
+            add_contact_stiffness(&mut k, [site1, site2], params, normal, p, &mut memo)
         });
         self.state.clock.dt_updated_at = self.state.clock.steps;
         let critical = critical_step_from_stiffness(&self.state.model, &k)
@@ -345,6 +346,7 @@ impl Simulation {
         let TimeStep::Auto { safety } = self.state.settings.time_step else { return };
         let p = &self.state.model.particles;
         let mut lowest = Real::INFINITY;
+        let mut memo = Default::default();
         let contacts = &self.state.contacts;
         let picks = merged_fresh(&contacts.list, &fresh.fresh, &contacts.pairs, &fresh.pairs.fresh);
         for pick in picks {
@@ -360,7 +362,7 @@ impl Simulation {
                 }
             };
             let k = &mut self.state.clock.stiffness;
-            add_contact_stiffness(k, [&site1, &site2], &params, &normal, p);
+            add_contact_stiffness(k, [&site1, &site2], &params, &normal, p, &mut memo);
             for site in [&site1, &site2] {
                 for slot in 0..site.node_count() {
                     let n = site.nodes[slot] as usize;
@@ -561,13 +563,15 @@ struct WallPower {
 /// Adds a contact's stiffness to the particles carrying its two sites (the full contact
 /// stiffness on each: conservative), with the site's radius as the lever arm of the shear.
 /// A contact with dashpots counts for the stiffer spring whose stability limit it has
-/// (`damped_stiffness_factor`, model.md §7).
+/// (`damped_stiffness_factor`, model.md §7; `memo` keeps its last answers, one for the
+/// normal spring and one for the shear spring).
 fn add_contact_stiffness(
     k: &mut StiffnessSums,
     sites: [&Site; 2],
     params: &FrictionalParams,
     n: &Vec3,
     p: &Particles,
+    memo: &mut [FactorMemo; 2],
 ) {
     let c = params;
     let (kn, ks) = (c.kn, c.ks);
@@ -577,8 +581,8 @@ fn add_contact_stiffness(
             let node = site.nodes[slot] as usize;
             if damped {
                 let m = p.mass[node];
-                let kn = kn * damped_stiffness_factor(kn, c.cn, m);
-                let ks = ks * damped_stiffness_factor(ks, c.ct, m);
+                let kn = kn * memo[0].factor(kn, c.cn, m);
+                let ks = ks * memo[1].factor(ks, c.ct, m);
                 k.add(node, n, kn, ks, site.radius, 0.0, 0.0);
             } else {
                 k.add(node, n, kn, ks, site.radius, 0.0, 0.0);
