@@ -125,44 +125,100 @@ impl LoadIndex {
         pairs: &NeighbourList,
         scratch: &PairScratch,
     ) {
-        let keys = pairs.keys();
-        let general_key = |code: u32| list[(code / 8) as usize].key();
         let general_load = |code: u32| &loads[(code / 8) as usize][(code % 8) as usize];
-        let pair_key = |code: u32| keys.get((code / 2) as usize);
         let pair_load =
             |code: u32| pairs.load_of(scratch, (code / 2) as usize, (code % 2) as usize);
         force.par_chunks_mut(CHUNK).zip(torque.par_chunks_mut(CHUNK)).enumerate().for_each(
             |(c, (f, t))| {
                 for (k, (f, t)) in f.iter_mut().zip(t).enumerate() {
-                    let i = c * CHUNK + k;
-                    let general = range(&self.general_offsets, &self.general_entries, i);
-                    let paired = range(&self.pair_offsets, &self.pair_entries, i);
                     let mut add = |l: &NodeLoad| {
                         *f += l.force;
                         *t += l.torque;
                     };
-                    let (mut a, mut b) = (0, 0);
-                    // the two lists merged by key (a pair that does not touch adds nothing)
-                    while a < general.len() || b < paired.len() {
-                        let take_general = match (general.get(a), paired.get(b)) {
-                            (Some(&g), Some(&p)) => general_key(g) < pair_key(p),
-                            (Some(_), None) => true,
-                            _ => false,
-                        };
-                        if take_general {
-                            add(general_load(general[a]));
-                            a += 1;
-                        } else {
-                            if let Some(l) = pair_load(paired[b]) {
+                    // (a pair that does not touch adds nothing)
+                    self.in_key_order(c * CHUNK + k, list, pairs, |entry| match entry {
+                        Entry::General(code) => add(general_load(code)),
+                        Entry::Pair(code) => {
+                            if let Some(l) = pair_load(code) {
                                 add(&l);
                             }
-                            b += 1;
                         }
-                    }
+                    });
                 }
             },
         );
     }
+
+    /// Indexes the sites' nodes of the general contacts `list` (their law's stiffness goes to
+    /// each node of each site, `stiffness_sums.rs`) for `particles` particles, with the codes
+    /// of [`LoadIndex::index_general`]: `8·n + slot`, site 1's nodes at slots 0–2, site 2's
+    /// at 3–5 (what the loads' index holds, made from the contacts themselves: no update
+    /// need have run).
+    pub(crate) fn index_general_sites(&mut self, list: &[Contact], particles: usize) {
+        if list.is_empty() {
+            self.general_offsets.clear();
+            self.general_entries.clear();
+            return;
+        }
+        let entries = list.iter().enumerate().flat_map(|(n, c)| {
+            let code = 8 * n as u32;
+            let sites = [(&c.site1, 0u32), (&c.site2, 3)];
+            sites.into_iter().flat_map(move |(site, first)| {
+                (0..site.node_count() as u32)
+                    .map(move |k| (site.nodes[k as usize], code + first + k))
+            })
+        });
+        counting_sort(
+            entries,
+            particles,
+            &mut self.count,
+            &mut self.general_offsets,
+            &mut self.general_entries,
+        );
+    }
+
+    /// Gives `f` particle `i`'s entries in the contacts' key order: those of the general
+    /// contacts `list` and of the candidate pairs of `pairs` (touching or not), the two
+    /// lists merged by key. The index must be up to date.
+    #[inline]
+    pub(crate) fn in_key_order(
+        &self,
+        i: usize,
+        list: &[Contact],
+        pairs: &NeighbourList,
+        mut f: impl FnMut(Entry),
+    ) {
+        let keys = pairs.keys();
+        let general = range(&self.general_offsets, &self.general_entries, i);
+        let paired = range(&self.pair_offsets, &self.pair_entries, i);
+        let general_key = |code: u32| list[(code / 8) as usize].key();
+        let pair_key = |code: u32| keys.get((code / 2) as usize);
+        let (mut a, mut b) = (0, 0);
+        while a < general.len() || b < paired.len() {
+            let take_general = match (general.get(a), paired.get(b)) {
+                (Some(&g), Some(&p)) => general_key(g) < pair_key(p),
+                (Some(_), None) => true,
+                _ => false,
+            };
+            if take_general {
+                f(Entry::General(general[a]));
+                a += 1;
+            } else {
+                f(Entry::Pair(paired[b]));
+                b += 1;
+            }
+        }
+    }
+}
+
+/// A particle's entry in the index: a general contact's `8·n + slot`, or a candidate pair's
+/// `2·n + side`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Entry {
+    /// Slot `code % 8` of general contact `code / 8`.
+    General(u32),
+    /// Side `code % 2` (0: body 1) of candidate pair `code / 2`.
+    Pair(u32),
 }
 
 /// Entries of particle `i` in a CSR table (none beyond the table).

@@ -35,6 +35,7 @@ mod simulation;
 mod stages;
 mod state;
 mod step_work;
+mod stiffness_sums;
 mod time_step;
 mod timers;
 mod touchings;

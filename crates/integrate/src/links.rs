@@ -401,6 +401,16 @@ impl Links {
         })
     }
 
+    /// The links of node `i`, in link order (none for a particle in no link).
+    #[inline]
+    pub(crate) fn links_of(&self, i: usize) -> impl Iterator<Item = usize> + '_ {
+        let codes = match (self.node_offsets.get(i), self.node_offsets.get(i + 1)) {
+            (Some(&s), Some(&e)) => &self.node_loads[s as usize..e as usize],
+            _ => &[],
+        };
+        codes.iter().map(|&code| (code / 2) as usize)
+    }
+
     /// Adds the last update's loads to the per-particle `force` and `torque` sums, node by
     /// node in link order (parallel over nodes, independent of the thread count).
     pub fn add_loads(&self, force: &mut [Vec3], torque: &mut [Vec3]) {

@@ -3,7 +3,6 @@
 //! unstable and the time step.
 
 use crate::culprit::describe;
-use crate::dashpots::FactorMemo;
 use crate::energy::PendingWork;
 use crate::integrator::{leapfrog_step, Leapfrog, StepWork};
 use crate::links::LinkUpdate;
@@ -14,12 +13,13 @@ use crate::pressure::add_pressure_forces;
 use crate::servo::steer_walls;
 use crate::settings::TimeStep;
 use crate::simulation::Simulation;
-use crate::time_step::{critical_step_from_stiffness, p_wave_time_step, StiffnessSums};
+use crate::stiffness_sums::{
+    add_contact_stiffness, add_in_order, add_per_particle, MIN_PARALLEL_SUMS,
+};
+use crate::time_step::{critical_step_from_stiffness, p_wave_time_step};
 use crate::timers::Stage;
 use crate::SimulationError;
-use flexdem_contact::FrictionalParams;
-use flexdem_elements::virtual_sphere::Site;
-use flexdem_elements::{Dofs, Particles};
+use flexdem_elements::Dofs;
 use flexdem_geom::{Real, Vec3};
 use rayon::prelude::*;
 
@@ -41,24 +41,16 @@ impl Simulation {
         // the last estimate's sums, zeroed: their memory serves again
         let mut k = std::mem::take(&mut self.state.clock.stiffness);
         k.reset(self.state.model.particles.len());
-        let p = &self.state.model.particles;
-        for (l, nodes) in self.state.links.nodes.iter().enumerate() {
-            if self.state.links.state[l].status == flexdem_contact::LinkStatus::Broken {
-                continue;
-            }
-            let [a, b] = nodes.map(|n| n as usize);
-            let d = p.pos[b] - p.pos[a];
-            let len = d.norm();
-            let n = if len > 0.0 { d / len } else { Vec3::x() };
-            let s = &self.state.links.spring_of(l).stiffness;
-            for i in [a, b] {
-                k.add(i, &n, s.kn, s.ks, 0.5 * len, s.kt, s.kb);
-            }
+        let (links, contacts) = (&self.state.links, &self.state.contacts);
+        let model = &self.state.model;
+        let index = &mut self.pipeline.contacts.load_index;
+        // per particle in parallel with more than one thread (the same sums)
+        let parallel = rayon::current_num_threads() > 1
+            && model.particles.len() >= MIN_PARALLEL_SUMS
+            && add_per_particle(&mut k, links, contacts, model, index);
+        if !parallel {
+            add_in_order(&mut k, links, contacts, model);
         }
-        let mut memo = Default::default();
-        self.state.contacts.for_each_law(&self.state.model, |site1, site2, params, normal| {
-            add_contact_stiffness(&mut k, [site1, site2], params, normal, p, &mut memo)
-        });
         self.state.clock.dt_updated_at = self.state.clock.steps;
         let critical = critical_step_from_stiffness(&self.state.model, &k)
             .or_else(|| p_wave_time_step(&self.state.model))
@@ -558,37 +550,6 @@ struct WallPower {
     before: Real,
     /// With the velocities they move with over the step after t.
     after: Real,
-}
-
-/// Adds a contact's stiffness to the particles carrying its two sites (the full contact
-/// stiffness on each: conservative), with the site's radius as the lever arm of the shear.
-/// A contact with dashpots counts for the stiffer spring whose stability limit it has
-/// (`damped_stiffness_factor`, model.md §7; `memo` keeps its last answers, one for the
-/// normal spring and one for the shear spring).
-fn add_contact_stiffness(
-    k: &mut StiffnessSums,
-    sites: [&Site; 2],
-    params: &FrictionalParams,
-    n: &Vec3,
-    p: &Particles,
-    memo: &mut [FactorMemo; 2],
-) {
-    let c = params;
-    let (kn, ks) = (c.kn, c.ks);
-    let damped = c.is_damped();
-    for site in sites {
-        for slot in 0..site.node_count() {
-            let node = site.nodes[slot] as usize;
-            if damped {
-                let m = p.mass[node];
-                let kn = kn * memo[0].factor(kn, c.cn, m);
-                let ks = ks * memo[1].factor(ks, c.ct, m);
-                k.add(node, n, kn, ks, site.radius, 0.0, 0.0);
-            } else {
-                k.add(node, n, kn, ks, site.radius, 0.0, 0.0);
-            }
-        }
-    }
 }
 
 /// The energy below which a balance error is round-off: `ROUND_OFF_SPEED² · Σ m r²/dt²`, the

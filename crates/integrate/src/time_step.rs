@@ -37,11 +37,26 @@ impl StiffnessSums {
     /// `K_trans,k += (kn − ks)·n_k² + ks`,
     /// `K_rot,k += ks·lever²·(1 − n_k²) + (kt − kb)·n_k² + kb`.
     pub fn add(&mut self, i: usize, n: &Vec3, kn: Real, ks: Real, lever: Real, kt: Real, kb: Real) {
-        let n2 = n.component_mul(n);
-        self.translational[i] += n2 * (kn - ks) + Vec3::repeat(ks);
-        self.rotational[i] +=
-            (Vec3::repeat(1.0) - n2) * (ks * lever * lever) + n2 * (kt - kb) + Vec3::repeat(kb);
+        let sums = (&mut self.translational[i], &mut self.rotational[i]);
+        add_spring(sums, n, kn, ks, lever, kt, kb);
     }
+}
+
+/// [`StiffnessSums::add`] on one particle's sums `(translational, rotational)`.
+#[inline]
+pub(crate) fn add_spring(
+    (translational, rotational): (&mut Vec3, &mut Vec3),
+    n: &Vec3,
+    kn: Real,
+    ks: Real,
+    lever: Real,
+    kt: Real,
+    kb: Real,
+) {
+    let n2 = n.component_mul(n);
+    *translational += n2 * (kn - ks) + Vec3::repeat(ks);
+    *rotational +=
+        (Vec3::repeat(1.0) - n2) * (ks * lever * lever) + n2 * (kt - kb) + Vec3::repeat(kb);
 }
 
 /// `√(2·min(m/K_trans, J/K_rot))` over the particles that feel a stiffness and are free in

@@ -1,0 +1,231 @@
+//! The per-particle stiffness sums of the time-step estimate (`time_step.rs`, model.md §4):
+//! every intact link on its two nodes, in link order, then every contact on the nodes of its
+//! two sites, in the contacts' key order. Summed in one pass over the links and the
+//! contacts (`add_in_order`, one thread), or per particle in parallel (`add_per_particle`:
+//! each particle's links from the links' node index, its contacts from the loads' index,
+//! `gather.rs`), with the same additions in the same order: the same bits either way. The
+//! estimate runs every 10 steps while contacts appear; on one thread it was a twentieth of
+//! the two-thread step of the 10⁵-sphere packing (issue 14).
+
+use crate::contact_list::Contacts;
+use crate::dashpots::FactorMemo;
+use crate::gather::{fits_codes, Entry, LoadIndex};
+use crate::links::Links;
+use crate::time_step::{add_spring, StiffnessSums};
+use flexdem_contact::{FrictionalParams, LinkSpring, LinkStatus};
+use flexdem_elements::virtual_sphere::Site;
+use flexdem_elements::{Model, Particles};
+use flexdem_geom::{Real, Vec3};
+use rayon::prelude::*;
+
+/// Particles per parallel task.
+const CHUNK: usize = 1024;
+
+/// Below this many particles the sums are taken on one thread (a small scene's estimate
+/// costs less than the tasks).
+pub(crate) const MIN_PARALLEL_SUMS: usize = 4 * CHUNK;
+
+/// Link `l`'s springs as the estimate counts them, unless it is broken: its unit axis
+/// (x for coincident nodes), half its length (the shear's lever arm) and its spring.
+#[inline]
+fn link_spring<'a>(
+    links: &'a Links,
+    p: &Particles,
+    l: usize,
+) -> Option<(Vec3, Real, &'a LinkSpring)> {
+    if links.state[l].status == LinkStatus::Broken {
+        return None;
+    }
+    let [a, b] = links.nodes[l].map(|n| n as usize);
+    let d = p.pos[b] - p.pos[a];
+    let len = d.norm();
+    let n = if len > 0.0 { d / len } else { Vec3::x() };
+    Some((n, 0.5 * len, links.spring_of(l)))
+}
+
+/// Adds a contact's stiffness to one node of mass `mass` carrying one of its sites, of
+/// radius `radius` (the lever arm of the shear): the full contact stiffness (conservative).
+/// A contact with dashpots counts for the stiffer spring whose stability limit it has
+/// (`damped_stiffness_factor`, model.md §7; `memo` keeps its last answers, one for the
+/// normal spring and one for the shear spring).
+#[inline]
+fn add_contact_on_node(
+    sums: (&mut Vec3, &mut Vec3),
+    mass: Real,
+    params: &FrictionalParams,
+    n: &Vec3,
+    radius: Real,
+    memo: &mut [FactorMemo; 2],
+) {
+    let c = params;
+    let (kn, ks) = (c.kn, c.ks);
+    if c.is_damped() {
+        let kn = kn * memo[0].factor(kn, c.cn, mass);
+        let ks = ks * memo[1].factor(ks, c.ct, mass);
+        add_spring(sums, n, kn, ks, radius, 0.0, 0.0);
+    } else {
+        add_spring(sums, n, kn, ks, radius, 0.0, 0.0);
+    }
+}
+
+/// Adds a contact's stiffness to every node of its two sites ([`add_contact_on_node`]).
+pub(crate) fn add_contact_stiffness(
+    k: &mut StiffnessSums,
+    sites: [&Site; 2],
+    params: &FrictionalParams,
+    n: &Vec3,
+    p: &Particles,
+    memo: &mut [FactorMemo; 2],
+) {
+    for site in sites {
+        for slot in 0..site.node_count() {
+            let node = site.nodes[slot] as usize;
+            let sums = (&mut k.translational[node], &mut k.rotational[node]);
+            add_contact_on_node(sums, p.mass[node], params, n, site.radius, memo);
+        }
+    }
+}
+
+/// Adds the links' and the contacts' stiffness to `k` (zeroed, one entry per particle) in one
+/// pass over the links, then over the contacts in key order.
+pub(crate) fn add_in_order(
+    k: &mut StiffnessSums,
+    links: &Links,
+    contacts: &Contacts,
+    model: &Model,
+) {
+    let p = &model.particles;
+    for l in 0..links.nodes.len() {
+        let Some((n, lever, s)) = link_spring(links, p, l) else { continue };
+        let s = &s.stiffness;
+        for i in links.nodes[l] {
+            k.add(i as usize, &n, s.kn, s.ks, lever, s.kt, s.kb);
+        }
+    }
+    let mut memo = Default::default();
+    contacts.for_each_law(model, |site1, site2, params, normal| {
+        add_contact_stiffness(k, [site1, site2], params, normal, p, &mut memo)
+    });
+}
+
+/// [`add_in_order`]'s sums, per particle in parallel, when the contacts fit the index's codes
+/// (`index` is brought up to date for them); false, with nothing added, when not.
+pub(crate) fn add_per_particle(
+    k: &mut StiffnessSums,
+    links: &Links,
+    contacts: &Contacts,
+    model: &Model,
+    index: &mut LoadIndex,
+) -> bool {
+    let p = &model.particles;
+    let particles = p.len();
+    if !fits_codes(contacts.list.len(), contacts.pairs.keys().len()) {
+        return false;
+    }
+    index.index_pairs(&contacts.pairs, particles);
+    index.index_general_sites(&contacts.list, particles);
+    let index = &*index;
+    let (list, pairs) = (&contacts.list, &contacts.pairs);
+    let chunks = k.translational.par_chunks_mut(CHUNK).zip(k.rotational.par_chunks_mut(CHUNK));
+    chunks.enumerate().for_each(|(c, (translational, rotational))| {
+        let mut memo = Default::default();
+        for (j, (t, r)) in translational.iter_mut().zip(rotational).enumerate() {
+            let i = c * CHUNK + j;
+            // summed in registers from the zeros, stored once (the same additions)
+            let (mut t_sum, mut r_sum) = (*t, *r);
+            for l in links.links_of(i) {
+                if let Some((n, lever, s)) = link_spring(links, p, l) {
+                    let s = &s.stiffness;
+                    add_spring((&mut t_sum, &mut r_sum), &n, s.kn, s.ks, lever, s.kt, s.kb);
+                }
+            }
+            let mass = p.mass[i];
+            index.in_key_order(i, list, pairs, |entry| {
+                let sums = (&mut t_sum, &mut r_sum);
+                match entry {
+                    Entry::General(code) => {
+                        let (c, slot) = (&list[(code / 8) as usize], code % 8);
+                        let site = if slot < 3 { &c.site1 } else { &c.site2 };
+                        let normal = &c.state.normal;
+                        add_contact_on_node(sums, mass, &c.params, normal, site.radius, &mut memo);
+                    }
+                    Entry::Pair(code) => {
+                        // (a free sphere's site is the sphere: its radius is the lever arm)
+                        if let Some(c) = pairs.contact_at((code / 2) as usize) {
+                            let (params, normal, radius) =
+                                (&c.params, &c.state.normal, p.radius[i]);
+                            add_contact_on_node(sums, mass, params, normal, radius, &mut memo);
+                        }
+                    }
+                }
+            });
+            (*t, *r) = (t_sum, r_sum);
+        }
+    });
+    true
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{Settings, Simulation};
+    use flexdem_contact::{ContactDamping, Material};
+    use flexdem_elements::builders::{membrane_rectangle, StructureOptions};
+    use flexdem_elements::Dofs;
+
+    /// A damped PFacet membrane (links, nodes) under a heap of overlapping spheres that touch
+    /// it (general contacts), each other and a wall (the neighbour list's pairs), after a few
+    /// steps: the per-particle sums, with two threads, are the one-pass sums to the bit.
+    #[test]
+    fn the_per_particle_sums_are_the_one_pass_sums() {
+        let mut model = flexdem_elements::Model::new();
+        let material = Material::new(1e7, 0.3, 1000.0, 0.5)
+            .unwrap()
+            .with_damping(ContactDamping::Restitution(0.5));
+        let id = model.add_material(material).unwrap();
+        let opts = StructureOptions::new("membrane", 0.002, id);
+        let (o, u, v) = (Vec3::new(-0.1, -0.1, 0.0), Vec3::x(), Vec3::y());
+        let s = membrane_rectangle(&mut model, o, u, v, 0.2, 0.2, 6, 6, &opts).unwrap();
+        let nodes = model.structures[s as usize].nodes.clone();
+        let corners = [0, 6, 42, 48].map(|k| nodes.start + k);
+        model.block(corners, Dofs::TRANSLATION).unwrap();
+        // two layers of spheres of radius 0.011 at a spacing of 0.02 (each overlaps its
+        // neighbours), the lower one on the membrane, and a column down to a wall beside it
+        let r = 0.011;
+        for (i, j, layer) in (0..5).flat_map(|i| (0..5).flat_map(move |j| [(i, j, 0), (i, j, 1)])) {
+            let c = Vec3::new(-0.04 + 0.02 * i as Real, -0.04 + 0.02 * j as Real, 0.0125);
+            model.add_sphere(c + Vec3::z() * (0.02 * layer as Real), r, id).unwrap();
+        }
+        for k in 0..4 {
+            model.add_sphere(Vec3::new(0.2, 0.0, -0.0495 + 0.02 * k as Real), r, id).unwrap();
+        }
+        model.add_wall(Vec3::new(0.0, 0.0, -0.06), Vec3::z(), id).unwrap();
+        let settings = Settings { gravity: Vec3::new(0.0, 0.0, -9.81), ..Settings::default() };
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build().unwrap();
+        pool.install(|| {
+            let mut sim = Simulation::new(model, settings).unwrap();
+            sim.run(5).unwrap();
+            let (state, index) = (&sim.state, &mut sim.pipeline.contacts.load_index);
+            let (links, contacts, model) = (&state.links, &state.contacts, &state.model);
+            let walls = contacts.pairs.touching().filter(|(key, _)| {
+                matches!(key.0, flexdem_elements::virtual_sphere::Feature::Wall(_))
+            });
+            let counts = (links.intact(), contacts.list.len(), contacts.pairs.len(), walls.count());
+            assert!(
+                counts.0 > 0 && counts.1 > 0 && counts.2 > counts.3 && counts.3 > 0,
+                "{counts:?}"
+            );
+            assert!(contacts.list.iter().all(|c| c.params.is_damped()));
+            let n = model.particles.len();
+            let (mut one_pass, mut per_particle) = (StiffnessSums::new(n), StiffnessSums::new(n));
+            add_in_order(&mut one_pass, links, contacts, model);
+            assert!(add_per_particle(&mut per_particle, links, contacts, model, index));
+            let bits = |k: &StiffnessSums| -> Vec<[u64; 6]> {
+                let both = k.translational.iter().zip(&k.rotational);
+                both.map(|(t, r)| [t.x, t.y, t.z, r.x, r.y, r.z].map(Real::to_bits)).collect()
+            };
+            assert_eq!(bits(&one_pass), bits(&per_particle));
+            assert!(one_pass.translational.iter().all(|t| t.max() > 0.0), "every particle counted");
+        });
+    }
+}
