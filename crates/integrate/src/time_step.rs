@@ -5,8 +5,10 @@
 //! nodes that carry them (YADE does not). A P-wave estimate `r/√(E/ρ)` is the answer when no
 //! particle feels any stiffness yet (free spheres in flight before their first contact).
 
-use flexdem_elements::Model;
+use crate::parallel::MIN_PARALLEL_CHEAP;
+use flexdem_elements::{Model, Particles};
 use flexdem_geom::{Real, Vec3};
+use rayon::prelude::*;
 
 /// Per-particle stiffness sums, per axis, translational and rotational.
 #[derive(Clone, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -60,28 +62,33 @@ pub(crate) fn add_spring(
 }
 
 /// `√(2·min(m/K_trans, J/K_rot))` over the particles that feel a stiffness and are free in
-/// at least one DOF; `None` if none does.
+/// at least one DOF; `None` if none does. In parallel over the particles (a minimum of
+/// numbers, none a NaN, is the same whatever the order it is taken in).
 pub fn critical_step_from_stiffness(model: &Model, k: &StiffnessSums) -> Option<Real> {
     let p = &model.particles;
-    let mut best: Option<Real> = None;
-    for i in 0..p.len() {
-        if p.blocked[i] == flexdem_elements::Dofs::ALL {
-            continue;
-        }
-        let mut ratio = Real::INFINITY;
-        let (kt, kr) = (k.translational[i].max(), k.rotational[i].max());
-        if kt > 0.0 {
-            ratio = ratio.min(p.mass[i] / kt);
-        }
-        if kr > 0.0 && p.inertia[i] > 0.0 {
-            ratio = ratio.min(p.inertia[i] / kr);
-        }
-        if ratio.is_finite() {
-            let dt = (2.0 * ratio).sqrt();
-            best = Some(best.map_or(dt, |b: Real| b.min(dt)));
-        }
+    (0..p.len())
+        .into_par_iter()
+        .with_min_len(MIN_PARALLEL_CHEAP)
+        .filter_map(|i| particle_critical_step(p, k, i))
+        .reduce_with(Real::min)
+}
+
+/// `√(2·min(m/K_trans, J/K_rot))` of particle `i`, if it feels a stiffness and is free in at
+/// least one DOF (a positive number, never a NaN).
+#[inline]
+fn particle_critical_step(p: &Particles, k: &StiffnessSums, i: usize) -> Option<Real> {
+    if p.blocked[i] == flexdem_elements::Dofs::ALL {
+        return None;
     }
-    best
+    let mut ratio = Real::INFINITY;
+    let (kt, kr) = (k.translational[i].max(), k.rotational[i].max());
+    if kt > 0.0 {
+        ratio = ratio.min(p.mass[i] / kt);
+    }
+    if kr > 0.0 && p.inertia[i] > 0.0 {
+        ratio = ratio.min(p.inertia[i] / kr);
+    }
+    ratio.is_finite().then(|| (2.0 * ratio).sqrt())
 }
 
 /// P-wave estimate `min over particles of r/√(E/ρ_eff)` with `ρ_eff = m/((4/3)πr³)` (YADE's
