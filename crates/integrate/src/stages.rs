@@ -6,20 +6,16 @@ use crate::culprit::describe;
 use crate::energy::PendingWork;
 use crate::integrator::{leapfrog_step, Leapfrog, StepWork};
 use crate::links::LinkUpdate;
-use crate::neighbours::{merged_fresh, sites, Pick};
 use crate::offsets::release_offsets;
 use crate::parallel::{any_zipped, MIN_PARALLEL_CHEAP};
 use crate::pressure::add_pressure_forces;
 use crate::servo::steer_walls;
 use crate::settings::TimeStep;
 use crate::simulation::Simulation;
-use crate::stiffness_sums::{
-    add_contact_stiffness, add_in_order, add_per_particle, MIN_PARALLEL_SUMS,
-};
+use crate::stiffness_sums::{add_fresh, add_in_order, add_per_particle, MIN_PARALLEL_SUMS};
 use crate::time_step::{critical_step_from_stiffness, p_wave_time_step};
 use crate::timers::Stage;
 use crate::SimulationError;
-use flexdem_elements::Dofs;
 use flexdem_geom::{Real, Vec3};
 use rayon::prelude::*;
 
@@ -336,46 +332,9 @@ impl Simulation {
             return;
         }
         let TimeStep::Auto { safety } = self.state.settings.time_step else { return };
-        let p = &self.state.model.particles;
-        let mut lowest = Real::INFINITY;
-        let mut memo = Default::default();
-        let contacts = &self.state.contacts;
-        let picks = merged_fresh(&contacts.list, &fresh.fresh, &contacts.pairs, &fresh.pairs.fresh);
-        for pick in picks {
-            // the sites, constants and normal only (a pair's whole `Contact` is not made)
-            let ((site1, site2), params, normal) = match pick {
-                Pick::General(i) => {
-                    let c = &contacts.list[i];
-                    ((c.site1, c.site2), c.params, c.state.normal)
-                }
-                Pick::Pair(i) => {
-                    let (key, c) = contacts.pairs.get(i);
-                    (sites(&self.state.model, &key), c.params, c.state.normal)
-                }
-            };
-            let k = &mut self.state.clock.stiffness;
-            add_contact_stiffness(k, [&site1, &site2], &params, &normal, p, &mut memo);
-            for site in [&site1, &site2] {
-                for slot in 0..site.node_count() {
-                    let n = site.nodes[slot] as usize;
-                    if p.blocked[n] == Dofs::ALL {
-                        continue;
-                    }
-                    let (kt, kr) = (
-                        self.state.clock.stiffness.translational[n].max(),
-                        self.state.clock.stiffness.rotational[n].max(),
-                    );
-                    let mut ratio = Real::INFINITY;
-                    if kt > 0.0 {
-                        ratio = ratio.min(p.mass[n] / kt);
-                    }
-                    if kr > 0.0 {
-                        ratio = ratio.min(p.inertia[n] / kr);
-                    }
-                    lowest = lowest.min((2.0 * ratio).sqrt());
-                }
-            }
-        }
+        let (general, pairs) = (&fresh.fresh, &fresh.pairs.fresh);
+        let k = &mut self.state.clock.stiffness;
+        let lowest = add_fresh(k, &self.state.contacts, general, pairs, &self.state.model);
         if lowest < self.state.clock.critical_dt {
             self.state.clock.critical_dt = lowest;
             self.state.clock.dt = self.state.clock.dt.min(safety * lowest);

@@ -55,10 +55,25 @@ pub(crate) fn add_spring(
     kt: Real,
     kb: Real,
 ) {
+    let (t, r) = spring_increments(n, kn, ks, lever, kt, kb);
+    *translational += t;
+    *rotational += r;
+}
+
+/// What [`add_spring`] adds to the translational and the rotational sums.
+#[inline]
+pub(crate) fn spring_increments(
+    n: &Vec3,
+    kn: Real,
+    ks: Real,
+    lever: Real,
+    kt: Real,
+    kb: Real,
+) -> (Vec3, Vec3) {
     let n2 = n.component_mul(n);
-    *translational += n2 * (kn - ks) + Vec3::repeat(ks);
-    *rotational +=
-        (Vec3::repeat(1.0) - n2) * (ks * lever * lever) + n2 * (kt - kb) + Vec3::repeat(kb);
+    let t = n2 * (kn - ks) + Vec3::repeat(ks);
+    let r = (Vec3::repeat(1.0) - n2) * (ks * lever * lever) + n2 * (kt - kb) + Vec3::repeat(kb);
+    (t, r)
 }
 
 /// `√(2·min(m/K_trans, J/K_rot))` over the particles that feel a stiffness and are free in
