@@ -15,6 +15,7 @@ use crate::dashpots::account_ended_springs;
 use crate::gather::LoadIndex;
 use crate::offsets::continued_overlap;
 use crate::pair_passes::PairScratch;
+use crate::parallel::MAX_CHUNKS_PER_TASK;
 use crate::parallel::{MIN_PARALLEL_CHEAP, MIN_PARALLEL_COSTLY};
 use crate::prefilter::{proven_apart, write_hull, Hull};
 use crate::touchings::Touchings;
@@ -255,6 +256,7 @@ impl ContactPipeline {
             .pairs
             .par_chunks(DETECT_CHUNK)
             .zip(self.scratch.found[..chunks].par_iter_mut())
+            .with_max_len(MAX_CHUNKS_PER_TASK)
             .for_each(|(pairs, found)| {
                 found.clear();
                 for &(i, j) in pairs {
@@ -314,6 +316,7 @@ impl ContactPipeline {
             .par_iter()
             .zip(touching.starts.par_iter())
             .zip(scratch.survived[..chunks].par_iter_mut())
+            .with_max_len(MAX_CHUNKS_PER_TASK)
             .for_each(|((found, &start), survived)| {
                 survived.clear();
                 survived.extend(

@@ -13,6 +13,7 @@
 use crate::contact::Contact;
 use crate::neighbours::NeighbourList;
 use crate::pair_passes::PairScratch;
+use crate::parallel::MAX_CHUNKS_PER_TASK;
 use flexdem_elements::virtual_sphere::{Feature, NodeLoad};
 use flexdem_geom::Vec3;
 use rayon::prelude::*;
@@ -128,25 +129,24 @@ impl LoadIndex {
         let general_load = |code: u32| &loads[(code / 8) as usize][(code % 8) as usize];
         let pair_load =
             |code: u32| pairs.load_of(scratch, (code / 2) as usize, (code % 2) as usize);
-        force.par_chunks_mut(CHUNK).zip(torque.par_chunks_mut(CHUNK)).enumerate().for_each(
-            |(c, (f, t))| {
-                for (k, (f, t)) in f.iter_mut().zip(t).enumerate() {
-                    let mut add = |l: &NodeLoad| {
-                        *f += l.force;
-                        *t += l.torque;
-                    };
-                    // (a pair that does not touch adds nothing)
-                    self.in_key_order(c * CHUNK + k, list, pairs, |entry| match entry {
-                        Entry::General(code) => add(general_load(code)),
-                        Entry::Pair(code) => {
-                            if let Some(l) = pair_load(code) {
-                                add(&l);
-                            }
+        let chunks = force.par_chunks_mut(CHUNK).zip(torque.par_chunks_mut(CHUNK)).enumerate();
+        chunks.with_max_len(MAX_CHUNKS_PER_TASK).for_each(|(c, (f, t))| {
+            for (k, (f, t)) in f.iter_mut().zip(t).enumerate() {
+                let mut add = |l: &NodeLoad| {
+                    *f += l.force;
+                    *t += l.torque;
+                };
+                // (a pair that does not touch adds nothing)
+                self.in_key_order(c * CHUNK + k, list, pairs, |entry| match entry {
+                    Entry::General(code) => add(general_load(code)),
+                    Entry::Pair(code) => {
+                        if let Some(l) = pair_load(code) {
+                            add(&l);
                         }
-                    });
-                }
-            },
-        );
+                    }
+                });
+            }
+        });
     }
 
     /// Indexes the sites' nodes of the general contacts `list` (their law's stiffness goes to

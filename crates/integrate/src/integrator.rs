@@ -10,6 +10,7 @@
 //! component (0, or an imposed value) and feels neither force nor gravity.
 
 use crate::integrator_lanes::{leapfrog_four, Chunk, Kick, LaneSums};
+use crate::parallel::MAX_CHUNKS_PER_TASK;
 pub use crate::step_work::StepWork;
 pub(crate) use crate::turn::{renormalized, turn_quaternion};
 use flexdem_elements::{Dofs, Particles};
@@ -89,6 +90,7 @@ fn leapfrog_step_lanes(
         torque.par_chunks(CHUNK),
     )
         .into_par_iter()
+        .with_max_len(MAX_CHUNKS_PER_TASK)
         .map(|(pos, vel, ori, ang, mass, inertia, blocked, f, t)| {
             let mut work = StepWork::default();
             let lanes = Kick { gravity: *gravity, lambda, undamped, kick, previous, dt };

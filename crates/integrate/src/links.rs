@@ -2,6 +2,7 @@
 //! (model.md §3), updated in parallel each step, their node loads summed per node in a fixed
 //! order so that the result does not depend on the number of threads.
 
+use crate::parallel::MAX_CHUNKS_PER_TASK;
 use flexdem_contact::link_lanes::{update_link_lanes, LaneNodes, LANES};
 use flexdem_contact::{
     link_elastic_energy, update_link_parts, FailureMode, LinkClass, LinkEvent, LinkKinematics,
@@ -301,6 +302,7 @@ impl Links {
         )
             .into_par_iter()
             .zip(plastic)
+            .with_max_len(MAX_CHUNKS_PER_TASK)
             .map(|((nodes, class, spring, state, loads), mut plastic)| {
                 let mut sums = LinkUpdate::default();
                 // one zero plastic state for the chunk's links when no class is plastic: a
@@ -419,6 +421,7 @@ impl Links {
             .into_par_iter()
             .enumerate()
             .with_min_len(CHUNK)
+            .with_max_len(MAX_CHUNKS_PER_TASK * CHUNK)
             .for_each(|(i, (f, t))| {
                 let (s, e) = (self.node_offsets[i] as usize, self.node_offsets[i + 1] as usize);
                 // summed in registers, stored once (the same additions in the same order)

@@ -10,6 +10,7 @@ use crate::neighbours::{LawOut, NeighbourList, PairContact, PairOutcome, Pushed,
 use crate::pair_keys::key_at;
 use crate::pair_step::{apart, continuing_spheres, step_pair};
 use crate::pair_store::{BLOCK, NO_CONTACT};
+use crate::parallel::MAX_CHUNKS_PER_TASK;
 use flexdem_elements::virtual_sphere::{Feature, Kinematics, NodeLoad};
 use flexdem_elements::Model;
 use flexdem_geom::{Real, Vec3};
@@ -242,6 +243,7 @@ impl NeighbourList {
             .zip(scratch.position.par_chunks_mut(PAIR_CHUNK))
             .zip(chunks.par_iter_mut())
             .enumerate()
+            .with_max_len(MAX_CHUNKS_PER_TASK)
             .for_each(|(c, ((((keys, slots), blocks), positions), out))| {
                 let base = c * PAIR_CHUNK;
                 blocks.iter_mut().zip(slots.chunks_mut(BLOCK)).for_each(|(b, s)| b.tidy(s));

@@ -6,6 +6,14 @@
 /// collects keep their order).
 pub(crate) const MIN_PARALLEL_CHEAP: usize = 1024;
 
+/// At most this many chunks per rayon task in the loops over fixed chunks (the pairs'
+/// update, the leapfrog, the loads' gather). Left to itself, rayon splits such a loop into
+/// four tasks with two threads and splits further only what another thread steals: the
+/// last task of the slower thread (a quarter of the work when the host took that thread's
+/// core for a while) was done alone while the other thread waited. Tasks of a few chunks
+/// let the threads share the end of the loop; the chunks, and so the results, are the same.
+pub(crate) const MAX_CHUNKS_PER_TASK: usize = 4;
+
 /// Fewest items a parallel task is given in a loop of costly items (a contact's kernel or
 /// law, up to a microsecond each).
 pub(crate) const MIN_PARALLEL_COSTLY: usize = 64;
