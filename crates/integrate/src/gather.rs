@@ -90,11 +90,6 @@ impl LoadIndex {
     /// go to (`load_nodes`, as `apply` wrote them: body 1's first `n1`, body 2's from slot 3,
     /// [`NO_NODE`] for the others) for `particles` particles.
     pub(crate) fn index_general(&mut self, load_nodes: &[[u32; 6]], particles: usize) {
-        if load_nodes.is_empty() {
-            self.general_offsets.clear();
-            self.general_entries.clear();
-            return;
-        }
         // (24 bytes per contact read, where the contacts and their loads are 680)
         let entries = load_nodes.iter().enumerate().flat_map(|(n, nodes)| {
             let code = 8 * n as u32;
@@ -103,13 +98,23 @@ impl LoadIndex {
                 (node != NO_NODE).then_some((node, code + slot))
             })
         });
-        counting_sort(
-            entries,
-            particles,
-            &mut self.count,
-            &mut self.general_offsets,
-            &mut self.general_entries,
-        );
+        self.index_general_entries(entries, particles);
+    }
+
+    /// The general contacts' table from its `(particle, code)` items, in contact order;
+    /// empty (no entry for any particle, nothing counted) when there is none.
+    fn index_general_entries(
+        &mut self,
+        entries: impl Iterator<Item = (u32, u32)> + Clone,
+        particles: usize,
+    ) {
+        let (offsets, table) = (&mut self.general_offsets, &mut self.general_entries);
+        if entries.clone().next().is_none() {
+            offsets.clear();
+            table.clear();
+            return;
+        }
+        counting_sort(entries, particles, &mut self.count, offsets, table);
     }
 
     /// Adds to `force` and `torque` (one entry per particle) the loads of the general
@@ -155,11 +160,6 @@ impl LoadIndex {
     /// at 3–5 (what the loads' index holds, made from the contacts themselves: no update
     /// need have run).
     pub(crate) fn index_general_sites(&mut self, list: &[Contact], particles: usize) {
-        if list.is_empty() {
-            self.general_offsets.clear();
-            self.general_entries.clear();
-            return;
-        }
         let entries = list.iter().enumerate().flat_map(|(n, c)| {
             let code = 8 * n as u32;
             let sites = [(&c.site1, 0u32), (&c.site2, 3)];
@@ -168,13 +168,7 @@ impl LoadIndex {
                     .map(move |k| (site.nodes[k as usize], code + first + k))
             })
         });
-        counting_sort(
-            entries,
-            particles,
-            &mut self.count,
-            &mut self.general_offsets,
-            &mut self.general_entries,
-        );
+        self.index_general_entries(entries, particles);
     }
 
     /// Gives `f` particle `i`'s entries in the contacts' key order: those of the general

@@ -193,16 +193,13 @@ pub(crate) struct NodeShare {
     after: (Real, Real),
 }
 
-/// The shares of the nodes of a new contact's two sites, site 1's first (at most 3 each),
-/// and how many there are.
-fn node_shares(
+/// A contact's two sites, law constants and normal (a pair's whole `Contact` is not made).
+fn law_of(
     pick: Pick,
     contacts: &Contacts,
     model: &Model,
-    memo: &mut [FactorMemo; 2],
-) -> ([NodeShare; 6], usize) {
-    // the sites, constants and normal only (a pair's whole `Contact` is not made)
-    let ((site1, site2), params, normal) = match pick {
+) -> ((Site, Site), FrictionalParams, Vec3) {
+    match pick {
         Pick::General(i) => {
             let c = &contacts.list[i];
             ((c.site1, c.site2), c.params, c.state.normal)
@@ -211,7 +208,18 @@ fn node_shares(
             let (key, c) = contacts.pairs.get(i);
             (sites(model, &key), c.params, c.state.normal)
         }
-    };
+    }
+}
+
+/// The shares of the nodes of a new contact's two sites, site 1's first (at most 3 each),
+/// and how many there are.
+fn node_shares(
+    pick: Pick,
+    contacts: &Contacts,
+    model: &Model,
+    memo: &mut [FactorMemo; 2],
+) -> ([NodeShare; 6], usize) {
+    let ((site1, site2), params, normal) = law_of(pick, contacts, model);
     let none = NodeShare { node: 0, increments: (Vec3::zeros(), Vec3::zeros()), after: (0.0, 0.0) };
     let mut shares = [none; 6];
     let mut len = 0;
@@ -431,16 +439,7 @@ mod tests {
             let (mut lowest, mut lowest_held) = (Real::INFINITY, Real::INFINITY);
             let mut memo = Default::default();
             for pick in merged_fresh(&contacts.list, general, &contacts.pairs, pairs) {
-                let ((site1, site2), params, normal) = match pick {
-                    Pick::General(i) => {
-                        let c = &contacts.list[i];
-                        ((c.site1, c.site2), c.params, c.state.normal)
-                    }
-                    Pick::Pair(i) => {
-                        let (key, c) = contacts.pairs.get(i);
-                        (sites(model, &key), c.params, c.state.normal)
-                    }
-                };
+                let ((site1, site2), params, normal) = law_of(pick, contacts, model);
                 let k = &mut one_pass;
                 add_contact_stiffness(k, [&site1, &site2], &params, &normal, p, &mut memo);
                 for site in [&site1, &site2] {
