@@ -12,7 +12,7 @@ use crate::dashpots::FactorMemo;
 use crate::gather::{fits_codes, Entry, LoadIndex};
 use crate::links::Links;
 use crate::neighbours::{merged_fresh, sites, Pick};
-use crate::time_step::{add_spring, spring_increments, StiffnessSums};
+use crate::time_step::{spring_increments, StiffnessSums};
 use flexdem_contact::{FrictionalParams, LinkSpring, LinkStatus};
 use flexdem_elements::virtual_sphere::Site;
 use flexdem_elements::{Dofs, Model, Particles};
@@ -68,19 +68,24 @@ fn contact_increments(
     }
 }
 
+/// Adds increments `(t, r)` to one particle's sums `(translational, rotational)`.
+#[inline]
+fn add_increments((translational, rotational): (&mut Vec3, &mut Vec3), (t, r): (Vec3, Vec3)) {
+    *translational += t;
+    *rotational += r;
+}
+
 /// Adds [`contact_increments`] to one node's sums.
 #[inline]
 fn add_contact_on_node(
-    (translational, rotational): (&mut Vec3, &mut Vec3),
+    sums: (&mut Vec3, &mut Vec3),
     mass: Real,
     params: &FrictionalParams,
     n: &Vec3,
     radius: Real,
     memo: &mut [FactorMemo; 2],
 ) {
-    let (t, r) = contact_increments(mass, params, n, radius, memo);
-    *translational += t;
-    *rotational += r;
+    add_increments(sums, contact_increments(mass, params, n, radius, memo));
 }
 
 /// Adds a contact's stiffness to every node of its two sites ([`add_contact_on_node`]).
@@ -151,7 +156,8 @@ pub(crate) fn add_per_particle(
             for l in links.links_of(i) {
                 if let Some((n, lever, s)) = link_spring(links, p, l) {
                     let s = &s.stiffness;
-                    add_spring((&mut t_sum, &mut r_sum), &n, s.kn, s.ks, lever, s.kt, s.kb);
+                    let increments = spring_increments(&n, s.kn, s.ks, lever, s.kt, s.kb);
+                    add_increments((&mut t_sum, &mut r_sum), increments);
                 }
             }
             let mass = p.mass[i];
@@ -258,6 +264,16 @@ pub(crate) fn add_fresh(
     }
 }
 
+/// Adds a new contact's node share to `k`; returns the largest component of the node's
+/// translational and rotational sums after it.
+#[inline]
+fn add_share(k: &mut StiffnessSums, share: &NodeShare) -> (Real, Real) {
+    let n = share.node as usize;
+    let (t, r) = (&mut k.translational[n], &mut k.rotational[n]);
+    add_increments((&mut *t, &mut *r), share.increments);
+    (t.max(), r.max())
+}
+
 /// The critical step `√(2·min(m/K_trans, J/K_rot))` of particle `n` whose sums have
 /// the largest components `kt` and `kr` (infinite for no stiffness).
 #[inline]
@@ -287,12 +303,10 @@ fn add_fresh_in_order(
     for pick in merged_fresh(&contacts.list, fresh, &contacts.pairs, fresh_pairs) {
         let (shares, len) = node_shares(pick, contacts, model, &mut memo);
         for share in &shares[..len] {
+            let (kt, kr) = add_share(k, share);
             let n = share.node as usize;
-            let (t, r) = (&mut k.translational[n], &mut k.rotational[n]);
-            *t += share.increments.0;
-            *r += share.increments.1;
             if p.blocked[n] != Dofs::ALL {
-                lowest = lowest.min(node_step(p, n, t.max(), r.max()));
+                lowest = lowest.min(node_step(p, n, kt, kr));
             }
         }
     }
@@ -325,11 +339,7 @@ fn add_fresh_in_parallel(
     let mut shares: Vec<NodeShare> =
         found.flat_map_iter(|(shares, len)| shares.into_iter().take(len)).collect();
     for share in shares.iter_mut() {
-        let n = share.node as usize;
-        let (t, r) = (&mut k.translational[n], &mut k.rotational[n]);
-        *t += share.increments.0;
-        *r += share.increments.1;
-        share.after = (t.max(), r.max());
+        share.after = add_share(k, share);
     }
     shares
         .par_iter()

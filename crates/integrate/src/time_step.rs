@@ -39,28 +39,13 @@ impl StiffnessSums {
     /// `K_trans,k += (kn − ks)·n_k² + ks`,
     /// `K_rot,k += ks·lever²·(1 − n_k²) + (kt − kb)·n_k² + kb`.
     pub fn add(&mut self, i: usize, n: &Vec3, kn: Real, ks: Real, lever: Real, kt: Real, kb: Real) {
-        let sums = (&mut self.translational[i], &mut self.rotational[i]);
-        add_spring(sums, n, kn, ks, lever, kt, kb);
+        let (t, r) = spring_increments(n, kn, ks, lever, kt, kb);
+        self.translational[i] += t;
+        self.rotational[i] += r;
     }
 }
 
-/// [`StiffnessSums::add`] on one particle's sums `(translational, rotational)`.
-#[inline]
-pub(crate) fn add_spring(
-    (translational, rotational): (&mut Vec3, &mut Vec3),
-    n: &Vec3,
-    kn: Real,
-    ks: Real,
-    lever: Real,
-    kt: Real,
-    kb: Real,
-) {
-    let (t, r) = spring_increments(n, kn, ks, lever, kt, kb);
-    *translational += t;
-    *rotational += r;
-}
-
-/// What [`add_spring`] adds to the translational and the rotational sums.
+/// What [`StiffnessSums::add`] adds to a particle's translational and rotational sums.
 #[inline]
 pub(crate) fn spring_increments(
     n: &Vec3,
