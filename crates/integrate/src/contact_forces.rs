@@ -93,6 +93,16 @@ impl ContactPipeline {
             loads[..n1].iter().chain(&loads[3..3 + n2])
         };
         let ended = &mut contacts.ended_dissipation;
+        if rayon::current_num_threads() == 1 && contacts.list.is_empty() {
+            // one pass with no general contact to put among the pairs (a granular scene): the
+            // keys are not looked at (their sink was a call per touching pair, 2.5 % of the
+            // LAMMPS twin's instructions)
+            return contacts.pairs.update_in_order(model, dt, &mut self.pairs, ended, |e| {
+                if let Sink::Load(l) = e {
+                    add(l);
+                }
+            });
+        }
         if rayon::current_num_threads() == 1 {
             // one pass: each pair's loads added as soon as they are known, after the general
             // contacts of smaller keys (the same sums, in the same order, as below)

@@ -8,7 +8,7 @@ use crate::contact::BirthReport;
 use crate::dashpots::pair_dashpot_power;
 use crate::neighbours::{LawOut, NeighbourList, PairContact, PairOutcome, Pushed, Sink};
 use crate::pair_keys::key_at;
-use crate::pair_step::{apart, continuing_spheres, step_pair};
+use crate::pair_step::{apart, continuing_pair, continuing_spheres, spheres_apart, step_pair};
 use crate::pair_store::{BLOCK, NO_CONTACT};
 use crate::parallel::MAX_CHUNKS_PER_TASK;
 use flexdem_elements::virtual_sphere::{Feature, Kinematics, NodeLoad};
@@ -294,23 +294,34 @@ impl NeighbourList {
         let used = self.keys.len().div_ceil(PAIR_CHUNK);
         let chunks = chunks_for(&mut scratch.chunks, self.keys.len());
         self.blocks.iter_mut().zip(self.slots.chunks_mut(BLOCK)).for_each(|(b, s)| b.tidy(s));
-        for (n, (key, slot)) in self.keys.iter().zip(self.slots.iter_mut()).enumerate() {
-            let key = &key;
-            if *slot == NO_CONTACT && apart(p, key) {
-                // (what step_pair would say at more cost: nothing happened)
-                continue;
+        let first_wall = self.keys.first_wall();
+        for (n, (&ids, slot)) in self.keys.ids().iter().zip(self.slots.iter_mut()).enumerate() {
+            if n < first_wall {
+                // two free spheres: the ids are theirs (`pair_keys::key_at`)
+                if *slot == NO_CONTACT {
+                    if spheres_apart(p, ids.0 as usize, ids.1 as usize) {
+                        // (what step_pair would say at more cost: nothing happened)
+                        continue;
+                    }
+                } else {
+                    let block = &mut self.blocks[n / BLOCK];
+                    let out = &mut chunks[n / PAIR_CHUNK];
+                    let mut law = LawOut::new(&mut out.book.pushed, n);
+                    let (i, j) = ids;
+                    if let Some(loads) = continuing_pair(p, i, j, *slot, block, dt, &mut law) {
+                        let elastic = law.elastic;
+                        let c = block.get(*slot).expect("a contact that goes on");
+                        out.book.record_continuing(c, elastic);
+                        sink(Sink::Before(&(Feature::Particle(i), Feature::Particle(j))));
+                        loads.iter().for_each(|l| sink(Sink::Load(l)));
+                        continue;
+                    }
+                }
             }
+            let key = &key_at(first_wall, n, ids);
             let block = &mut self.blocks[n / BLOCK];
             let out = &mut chunks[n / PAIR_CHUNK];
             let mut law = LawOut::new(&mut out.book.pushed, n);
-            if let Some(loads) = continuing_spheres(p, key, slot, block, dt, &mut law) {
-                let elastic = law.elastic;
-                let c = block.get(*slot).expect("a contact that goes on");
-                out.book.record_continuing(c, elastic);
-                sink(Sink::Before(key));
-                loads.iter().for_each(|l| sink(Sink::Load(l)));
-                continue;
-            }
             let mut o = PairOutcome::default();
             step_pair(model, &k, key, slot, block, dt, &mut o, &mut law);
             let elastic = law.elastic;

@@ -23,13 +23,16 @@ use flexdem_geom::{Real, Vec3};
 #[inline(always)]
 pub(crate) fn apart(p: &Particles, key: &ContactKey) -> bool {
     match *key {
-        (Feature::Particle(i), Feature::Particle(j)) => {
-            let (i, j) = (i as usize, j as usize);
-            let reach = p.radius[i] + p.radius[j];
-            (p.pos[j] - p.pos[i]).norm_squared() > reach * reach * (1.0 + 1e-9)
-        }
+        (Feature::Particle(i), Feature::Particle(j)) => spheres_apart(p, i as usize, j as usize),
         _ => false,
     }
+}
+
+/// [`apart`] of the free spheres `i` and `j`.
+#[inline(always)]
+pub(crate) fn spheres_apart(p: &Particles, i: usize, j: usize) -> bool {
+    let reach = p.radius[i] + p.radius[j];
+    (p.pos[j] - p.pos[i]).norm_squared() > reach * reach * (1.0 + 1e-9)
 }
 
 /// The hot case of [`step_pair`], a sphere–sphere contact that goes on: its law, and its
@@ -48,7 +51,21 @@ pub(crate) fn continuing_spheres(
     law: &mut LawOut<'_>,
 ) -> Option<[NodeLoad; 2]> {
     let (Feature::Particle(i), Feature::Particle(j)) = *key else { return None };
-    let c = block.get_mut(*slot)?;
+    continuing_pair(p, i, j, *slot, block, dt, law)
+}
+
+/// [`continuing_spheres`] of the free spheres `i` and `j` (the key of a sphere pair).
+#[inline(always)]
+pub(crate) fn continuing_pair(
+    p: &Particles,
+    i: u32,
+    j: u32,
+    slot: u32,
+    block: &mut BlockContacts<PairContact>,
+    dt: Real,
+    law: &mut LawOut<'_>,
+) -> Option<[NodeLoad; 2]> {
+    let c = block.get_mut(slot)?;
     let (i, j) = (i as usize, j as usize);
     let g = sphere_geometry(p, i, j, &c.state.normal).filter(|g| g.overlap > 0.0)?;
     Some(apply_law(c, &g, [i as u32, j as u32], [p.pos[i], p.pos[j]], dt, law))
