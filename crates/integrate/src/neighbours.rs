@@ -242,12 +242,16 @@ impl NeighbourList {
 
     /// Touching pairs.
     pub fn len(&self) -> usize {
-        self.slots.iter().filter(|&&s| s != NO_CONTACT).count()
+        // per block, its contacts less the places ends left (a look at ~150 blocks where a
+        // count of the slots read all the candidates' 4 bytes, twice a step)
+        let count = self.blocks.iter().map(BlockContacts::live).sum();
+        debug_assert_eq!(count, self.slots.iter().filter(|&&s| s != NO_CONTACT).count());
+        count
     }
 
     /// Whether no pair touches.
     pub fn is_empty(&self) -> bool {
-        self.slots.iter().all(|&s| s == NO_CONTACT)
+        self.len() == 0
     }
 
     /// The contact of candidate `index`, if it touches.

@@ -65,6 +65,12 @@ impl<C> BlockContacts<C> {
         }
     }
 
+    /// The number of contacts held (those of the block's touching candidates).
+    #[inline]
+    pub(crate) fn live(&self) -> usize {
+        self.contacts.len() - self.holes.len()
+    }
+
     /// Stores a new contact and returns its slot: the place an ended contact left, else the
     /// end of the array (grown by an eighth at a time, not doubled: a block gains few
     /// contacts between rebuilds).
