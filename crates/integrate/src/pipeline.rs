@@ -37,6 +37,8 @@ pub(crate) struct Pipeline {
     pub(crate) walls: WallLoads,
     /// The leapfrog's per-chunk energy sums (`leapfrog_step`'s buffer).
     pub(crate) step_work: Vec<StepWork>,
+    /// Per chunk of the leapfrog, whether its check flagged a particle (its buffer).
+    pub(crate) step_flags: Vec<bool>,
     /// Per-stage wall-clock times.
     pub(crate) timers: Timers,
     /// The user's hook, if any.
@@ -60,6 +62,7 @@ impl Pipeline {
                 stiffness: vec![0.0; state.model.walls.len()],
             },
             step_work: Vec::new(),
+            step_flags: Vec::new(),
             timers: Timers::default(),
             force_hook: None,
         }

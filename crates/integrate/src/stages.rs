@@ -4,14 +4,15 @@
 
 use crate::culprit::describe;
 use crate::energy::PendingWork;
-use crate::integrator::{leapfrog_step, Leapfrog, StepWork};
+use crate::integrator::{leapfrog_step_checked, Leapfrog, StepWork};
 use crate::links::LinkUpdate;
 use crate::offsets::release_offsets;
-use crate::parallel::{any_zipped, MIN_PARALLEL_CHEAP};
+use crate::parallel::MIN_PARALLEL_CHEAP;
 use crate::pressure::add_pressure_forces;
 use crate::servo::steer_walls;
 use crate::settings::TimeStep;
 use crate::simulation::Simulation;
+use crate::step_work::Checks;
 use crate::stiffness_sums::{add_fresh, add_in_order, add_per_particle, MIN_PARALLEL_SUMS};
 use crate::time_step::{critical_step_from_stiffness, p_wave_time_step};
 use crate::timers::Stage;
@@ -96,17 +97,17 @@ impl Simulation {
         let link_sums = self.link_stage(previous);
         let load_work = self.external_load_stage(previous);
         let walls = self.wall_stage(dt);
-        let work = self.integration_stage(previous, dt, walls);
+        let (work, flagged) = self.integration_stage(previous, dt, walls);
         self.state.clock.previous_dt = dt;
         self.state.clock.time += dt;
         self.state.clock.steps += 1;
-        let result = self.bookkeeping_stage(&work, load_work, &link_sums, dt, appeared);
+        let result = self.bookkeeping_stage(&work, load_work, &link_sums, dt, appeared, flagged);
         self.pipeline.timers.end();
         result
     }
 
-    /// Bookkeeping after the step: the checks (NaN, a particle jumping), the energy terms,
-    /// the energy watch and the time step.
+    /// Bookkeeping after the step: the checks (NaN, a particle jumping: sought when the
+    /// leapfrog `flagged` a particle), the energy terms, the energy watch and the time step.
     fn bookkeeping_stage(
         &mut self,
         work: &StepWork,
@@ -114,8 +115,9 @@ impl Simulation {
         link_sums: &LinkUpdate,
         dt: Real,
         appeared: bool,
+        flagged: bool,
     ) -> Result<(), SimulationError> {
-        let result = self.check_finite().and_then(|()| {
+        let result = self.check_finite(flagged).and_then(|()| {
             self.account_energy(work, load_work, link_sums, dt);
             self.watch_energy()?;
             self.time_step_stage(appeared)
@@ -264,16 +266,28 @@ impl Simulation {
     /// moved over `dt`), then the walls move with their velocities. The walls' work at t is
     /// trapezoidal, as the other works: `walls.before·dt₀/2` over the step before (with the
     /// velocities the walls moved with then) and `walls.after·dt/2` over the step after (with
-    /// the velocities they move with now, which a servo may have just changed).
-    fn integration_stage(&mut self, previous: Real, dt: Real, walls: WallPower) -> StepWork {
+    /// the velocities they move with now, which a servo may have just changed). Also says
+    /// whether a particle may have gone wrong (`check_finite` then seeks it).
+    fn integration_stage(
+        &mut self,
+        previous: Real,
+        dt: Real,
+        walls: WallPower,
+    ) -> (StepWork, bool) {
         let g = self.state.settings.gravity;
         let step = Leapfrog { gravity: g, damping: self.state.settings.damping, previous, dt };
-        let mut work = leapfrog_step(
+        let pipeline = &mut self.pipeline;
+        // (the collision stage sized the reaches to the particles)
+        debug_assert_eq!(pipeline.collider.reach.len(), self.state.model.particles.len());
+        let checks =
+            &mut Checks { reach: Some(&pipeline.collider.reach), flags: &mut pipeline.step_flags };
+        let (mut work, flagged) = leapfrog_step_checked(
             &mut self.state.model.particles,
-            &self.pipeline.force,
-            &self.pipeline.torque,
+            &pipeline.force,
+            &pipeline.torque,
             &step,
-            &mut self.pipeline.step_work,
+            &mut pipeline.step_work,
+            checks,
         );
         work.boundary += 0.5 * walls.before * previous;
         work.boundary_next += 0.5 * walls.after * dt;
@@ -287,7 +301,7 @@ impl Simulation {
             wall.point += wall.velocity * dt;
         }
         self.pipeline.timers.lap(Stage::Integration);
-        work
+        (work, flagged)
     }
 
     /// Power of the moving walls at time t: `Σ F·v_wall` over wall contacts, `F` the force
@@ -466,23 +480,13 @@ impl Simulation {
     /// reach is the particle's radius, or for a node the size of the smallest element holding
     /// it when that is larger: a thin cable or membrane (radius of microns, elements of
     /// centimetres) legitimately moves by more than its radius per step.
-    fn check_finite(&self) -> Result<(), SimulationError> {
+    fn check_finite(&self, flagged: bool) -> Result<(), SimulationError> {
         let p = &self.state.model.particles;
         let dt = self.state.clock.dt;
         let reach = &self.pipeline.collider.reach;
-        // one cheap pass (no root, no division) flags a step with a non-finite value or a
-        // particle beyond its reach; only then are the culprits sought
-        let dt2 = dt * dt;
-        // (the collision stage sized the reaches to the particles: a zip checks them all)
-        debug_assert_eq!(reach.len(), p.len());
-        let flagged = any_zipped(
-            p.pos.iter().zip(&p.vel).zip(&p.ang_vel).zip(reach),
-            p.pos.par_iter().zip(&p.vel).zip(&p.ang_vel).zip(reach),
-            |(((x, v), w), &reach)| {
-                let sum = x.sum() + v.sum() + w.sum();
-                !(sum.is_finite() && v.norm_squared() * dt2 <= reach * reach)
-            },
-        );
+        // the leapfrog's cheap test (`integrator::flags_step`, no root, no division) flagged
+        // a step with a non-finite value or a particle beyond its reach; only then are the
+        // culprits sought
         if !flagged {
             return Ok(());
         }

@@ -1,7 +1,7 @@
-//! The energy terms of a leapfrog step (`integrator.rs`, and its four-particle lanes,
-//! `integrator_lanes.rs`).
+//! What a leapfrog step (`integrator.rs`, and its four-particle lanes, `integrator_lanes.rs`)
+//! gives besides the motion: its energy terms, and its check of the particles it moved.
 
-use flexdem_geom::Real;
+use flexdem_geom::{Real, Vec3};
 
 /// Energy terms of one integration step from `x(t)` to `x(t + dt)`.
 ///
@@ -53,4 +53,20 @@ impl std::ops::AddAssign for StepWork {
         self.contact_damping += o.contact_damping;
         self.contact_damping_next += o.contact_damping_next;
     }
+}
+
+/// What the leapfrog checks after moving a chunk: the particles' reaches (none: no check)
+/// and the chunks' answers (a buffer kept by the caller).
+pub(crate) struct Checks<'a> {
+    pub(crate) reach: Option<&'a [Real]>,
+    pub(crate) flags: &'a mut Vec<bool>,
+}
+
+/// Whether a particle may have gone wrong in the step (`x`, `v`, `w` its new position,
+/// velocity and spin): a value not finite, or a move `|v|·dt` beyond its `reach`. One cheap
+/// test, no root or division; the caller seeks the culprit when it says yes.
+#[inline]
+pub(crate) fn flags_step(x: &Vec3, v: &Vec3, w: &Vec3, reach: Real, dt2: Real) -> bool {
+    let sum = x.sum() + v.sum() + w.sum();
+    !(sum.is_finite() && v.norm_squared() * dt2 <= reach * reach)
 }
