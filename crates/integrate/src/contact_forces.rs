@@ -12,7 +12,10 @@ use crate::contacts::ContactPipeline;
 use crate::dashpots::dashpot_power;
 use crate::gather::{fits_codes, load_nodes, NO_NODE};
 use crate::neighbours::{merged, Pick, Sink};
-use crate::parallel::MIN_PARALLEL_COSTLY;
+use crate::parallel::{MIN_PARALLEL_CHEAP, MIN_PARALLEL_COSTLY};
+
+/// Below this many particles, force and torque are zeroed on one thread.
+const MIN_PARALLEL_ZERO: usize = 8 * MIN_PARALLEL_CHEAP;
 use flexdem_contact::update_frictional_contact;
 use flexdem_elements::virtual_sphere::{distribute_force, Kinematics, NodeLoad};
 use flexdem_elements::Model;
@@ -33,6 +36,17 @@ impl ContactPipeline {
         torque: &mut [Vec3],
     ) -> BirthReport {
         let p = &model.particles;
+        // with more than one thread the loads' sums are written per particle (`gather.rs`),
+        // every particle's; else they are added as they come, onto zeros
+        let gathered = rayon::current_num_threads() > 1
+            && fits_codes(contacts.list.len(), contacts.pairs.keys().len());
+        if !gathered {
+            let zero = |v: &mut [Vec3]| {
+                v.par_iter_mut().with_min_len(MIN_PARALLEL_ZERO).for_each(|x| *x = Vec3::zeros())
+            };
+            zero(force);
+            zero(torque);
+        }
         let k = Kinematics { pos: &p.pos, vel: &p.vel, ang_vel: &p.ang_vel };
         let zero = [NodeLoad { node: 0, force: Vec3::zeros(), torque: Vec3::zeros() }; 6];
         self.loads.resize(contacts.list.len(), zero);
@@ -122,12 +136,12 @@ impl ContactPipeline {
             return report;
         }
         let report = contacts.pairs.update(model, dt, &mut self.pairs, ended);
-        if fits_codes(contacts.list.len(), contacts.pairs.keys().len()) {
+        if gathered {
             // each particle's loads in key order, in parallel over the particles (`gather.rs`)
             let index = &mut self.load_index;
             index.index_pairs(&contacts.pairs, p.len());
             index.index_general(&self.load_nodes, p.len());
-            index.add_loads(
+            index.write_loads(
                 force,
                 torque,
                 &contacts.list,

@@ -117,12 +117,13 @@ impl LoadIndex {
         counting_sort(entries, particles, &mut self.count, offsets, table);
     }
 
-    /// Adds to `force` and `torque` (one entry per particle) the loads of the general
-    /// contacts (`list`, `loads`) and of the touching candidate pairs of `pairs` at its last
-    /// parallel update (`scratch`), each particle's in key order, in parallel over the
-    /// particles. The index must be up to date ([`LoadIndex::index_pairs`],
-    /// [`LoadIndex::index_general`]).
-    pub(crate) fn add_loads(
+    /// Writes in `force` and `torque` (one entry per particle, every one written) the sums
+    /// of the loads of the general contacts (`list`, `loads`) and of the touching candidate
+    /// pairs of `pairs` at its last parallel update (`scratch`), each particle's in key
+    /// order from +0, in parallel over the particles: what adding them to zeroed arrays gave,
+    /// bit for bit, without a pass to zero them first. The index must be up to date
+    /// ([`LoadIndex::index_pairs`], [`LoadIndex::index_general`]).
+    pub(crate) fn write_loads(
         &self,
         force: &mut [Vec3],
         torque: &mut [Vec3],
@@ -137,6 +138,7 @@ impl LoadIndex {
         let chunks = force.par_chunks_mut(CHUNK).zip(torque.par_chunks_mut(CHUNK)).enumerate();
         chunks.with_max_len(MAX_CHUNKS_PER_TASK).for_each(|(c, (f, t))| {
             for (k, (f, t)) in f.iter_mut().zip(t).enumerate() {
+                (*f, *t) = (Vec3::zeros(), Vec3::zeros());
                 let mut add = |l: &NodeLoad| {
                     *f += l.force;
                     *t += l.torque;

@@ -7,7 +7,6 @@ use crate::energy::PendingWork;
 use crate::integrator::{leapfrog_step_checked, Leapfrog, StepWork};
 use crate::links::LinkUpdate;
 use crate::offsets::release_offsets;
-use crate::parallel::MIN_PARALLEL_CHEAP;
 use crate::pressure::add_pressure_forces;
 use crate::servo::steer_walls;
 use crate::settings::TimeStep;
@@ -138,14 +137,9 @@ impl Simulation {
         self.pipeline.timers.lap(Stage::Collision);
     }
 
-    /// Contacts: detection, births, the contact law, node loads (forces reset first).
-    /// Returns whether contacts appeared.
+    /// Contacts: detection, births, the contact law, node loads (the forces and torques made
+    /// anew: `ContactPipeline::apply`). Returns whether contacts appeared.
     fn contact_stage(&mut self, dt: Real) -> bool {
-        let zero = |v: &mut Vec<Vec3>| {
-            v.par_iter_mut().with_min_len(8 * MIN_PARALLEL_CHEAP).for_each(|x| *x = Vec3::zeros())
-        };
-        zero(&mut self.pipeline.force);
-        zero(&mut self.pipeline.torque);
         let before = self.state.contacts.len();
         let births = self.pipeline.contacts.detect(
             &mut self.state.contacts,
