@@ -100,61 +100,83 @@ fn leapfrog_step_lanes(
     let undamped = lambda == 0.0;
     let dt2 = dt * dt;
     let reach = checks.reach;
-    (
-        p.pos.par_chunks_mut(CHUNK),
-        p.vel.par_chunks_mut(CHUNK),
-        p.ori.par_chunks_mut(CHUNK),
-        p.ang_vel.par_chunks_mut(CHUNK),
-        p.mass.par_chunks(CHUNK),
-        p.inertia.par_chunks(CHUNK),
-        p.blocked.par_chunks(CHUNK),
-        force.par_chunks(CHUNK),
-        torque.par_chunks(CHUNK),
-    )
-        .into_par_iter()
-        .enumerate()
-        .with_max_len(MAX_CHUNKS_PER_TASK)
-        .map(|(c, (pos, vel, ori, ang, mass, inertia, blocked, f, t))| {
-            let mut work = StepWork::default();
-            let lanes = Kick { gravity: *gravity, lambda, undamped, kick, previous, dt };
-            let mut p = Chunk { pos, vel, ori, ang, mass, inertia, f, t, blocked };
-            // the batches' energy terms, lane by lane, added to `work` at the chunk's end
-            let mut sums = LaneSums::default();
-            // four particles at a time (`integrator_lanes.rs`: the same state bits, blocked
-            // DOFs or not; the energy terms to round-off), in order with the others: a particle with every DOF blocked (a
-            // support: the scalar way is a few additions), or one left alone, goes the
-            // scalar way after the batched ones before it
-            let mut batch = [0usize; 4];
-            let mut count = 0;
-            for i in 0..blocked.len() {
-                if four && blocked[i] != Dofs::ALL {
-                    batch[count] = i;
-                    count += 1;
-                    if count == 4 {
-                        four_of(&mut p, batch, 4, &lanes, &mut sums);
-                        count = 0;
-                    }
-                    continue;
-                }
-                flush_batch(&mut p, &batch[..count], &lanes, &mut work, &mut sums);
-                count = 0;
-                leapfrog_one(&mut p, i, &lanes, &mut work);
-            }
-            flush_batch(&mut p, &batch[..count], &lanes, &mut work, &mut sums);
-            sums.add_to(&mut work);
-            let flagged = reach.is_some_and(|reach| {
-                let reach = &reach[c * CHUNK..c * CHUNK + p.pos.len()];
-                let moved = p.pos.iter().zip(p.vel.iter()).zip(p.ang.iter()).zip(reach);
-                moved.fold(false, |any, (((x, v), w), &r)| any | flags_step(x, v, w, r, dt2))
-            });
-            (work, flagged)
+    let lanes = Kick { gravity: *gravity, lambda, undamped, kick, previous, dt };
+    let check = |c: usize, p: &Chunk<'_>| {
+        reach.is_some_and(|reach| {
+            let reach = &reach[c * CHUNK..c * CHUNK + p.pos.len()];
+            let moved = p.pos.iter().zip(p.vel.iter()).zip(p.ang.iter()).zip(reach);
+            moved.fold(false, |any, (((x, v), w), &r)| any | flags_step(x, v, w, r, dt2))
         })
-        .unzip_into_vecs(parts, checks.flags);
+    };
+    if p.len() <= CHUNK {
+        // one chunk (a small scene): on this thread, without a parallel dispatch (the
+        // same chunk, so the same bits)
+        let Particles { pos, vel, ori, ang_vel: ang, mass, inertia, blocked, .. } = p;
+        let (f, t) = (force, torque);
+        let mut chunk = Chunk { pos, vel, ori, ang, mass, inertia, f, t, blocked };
+        let work = step_chunk(&mut chunk, &lanes, four);
+        let flagged = check(0, &chunk);
+        parts.clear();
+        parts.push(work);
+        checks.flags.clear();
+        checks.flags.push(flagged);
+    } else {
+        (
+            p.pos.par_chunks_mut(CHUNK),
+            p.vel.par_chunks_mut(CHUNK),
+            p.ori.par_chunks_mut(CHUNK),
+            p.ang_vel.par_chunks_mut(CHUNK),
+            p.mass.par_chunks(CHUNK),
+            p.inertia.par_chunks(CHUNK),
+            p.blocked.par_chunks(CHUNK),
+            force.par_chunks(CHUNK),
+            torque.par_chunks(CHUNK),
+        )
+            .into_par_iter()
+            .enumerate()
+            .with_max_len(MAX_CHUNKS_PER_TASK)
+            .map(|(c, (pos, vel, ori, ang, mass, inertia, blocked, f, t))| {
+                let mut chunk = Chunk { pos, vel, ori, ang, mass, inertia, f, t, blocked };
+                let work = step_chunk(&mut chunk, &lanes, four);
+                (work, check(c, &chunk))
+            })
+            .unzip_into_vecs(parts, checks.flags);
+    }
     let mut total = StepWork::default();
     for w in parts.iter() {
         total += *w;
     }
     total
+}
+
+/// One chunk's leapfrog step, four free particles at a time where `four`: its energy terms.
+fn step_chunk(p: &mut Chunk<'_>, lanes: &Kick, four: bool) -> StepWork {
+    let mut work = StepWork::default();
+    // the batches' energy terms, lane by lane, added to `work` at the chunk's end
+    let mut sums = LaneSums::default();
+    // four particles at a time (`integrator_lanes.rs`: the same state bits, blocked DOFs or
+    // not; the energy terms to round-off), in order with the others: a particle with every
+    // DOF blocked (a support: the scalar way is a few additions), or one left alone, goes
+    // the scalar way after the batched ones before it
+    let mut batch = [0usize; 4];
+    let mut count = 0;
+    for i in 0..p.blocked.len() {
+        if four && p.blocked[i] != Dofs::ALL {
+            batch[count] = i;
+            count += 1;
+            if count == 4 {
+                four_of(p, batch, 4, lanes, &mut sums);
+                count = 0;
+            }
+            continue;
+        }
+        flush_batch(p, &batch[..count], lanes, &mut work, &mut sums);
+        count = 0;
+        leapfrog_one(p, i, lanes, &mut work);
+    }
+    flush_batch(p, &batch[..count], lanes, &mut work, &mut sums);
+    sums.add_to(&mut work);
+    work
 }
 
 /// The particles `batch` of chunk `p` (fewer than four, in order): two or more through the
