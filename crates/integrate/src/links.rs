@@ -287,112 +287,129 @@ impl Links {
         // plastic vector of another length (which `check_against` refuses) would leave links
         // out of the zip
         debug_assert!(self.plastic.is_empty() || self.plastic.len() == self.nodes.len());
-        let chunks = self.nodes.len().div_ceil(CHUNK);
-        let plastic = if self.plastic.is_empty() {
-            Either::Left((0..chunks).into_par_iter().map(|_| None))
-        } else {
-            Either::Right(self.plastic.par_chunks_mut(CHUNK).map(Some))
-        };
-        (
-            self.nodes.par_chunks(CHUNK),
-            self.class.par_chunks(CHUNK),
-            self.spring.par_chunks(CHUNK),
-            self.state.par_chunks_mut(CHUNK),
-            self.loads.par_chunks_mut(CHUNK),
-        )
-            .into_par_iter()
-            .zip(plastic)
-            .with_max_len(MAX_CHUNKS_PER_TASK)
-            .map(|((nodes, class, spring, state, loads), mut plastic)| {
-                let mut sums = LinkUpdate::default();
-                // one zero plastic state for the chunk's links when no class is plastic: a
-                // fragile link never writes it (`a_fragile_link_never_yields`)
-                let mut zero = LinkPlastic::default();
-                let kin_of = |k: usize| {
-                    let [a, b] = nodes[k].map(|n| n as usize);
-                    LinkKinematics {
-                        x1: p.pos[a],
-                        x2: p.pos[b],
-                        v1: p.vel[a],
-                        v2: p.vel[b],
-                        w1: p.ang_vel[a],
-                        w2: p.ang_vel[b],
-                        q1: p.ori[a],
-                        q2: p.ori[b],
-                    }
-                };
-                // four links at once on their common path (`update_link_lanes`: the scalar
-                // law's bits), the scalar law for those off it and for the last few; the
-                // sums added in link order either way
-                let n = nodes.len();
-                let mut k = 0;
-                while k < n {
-                    // the lanes' energies, added below in link order with the others'
-                    let mut energy = [0.0; LANES];
-                    let (count, taken) = if k + LANES <= n {
-                        let cls = std::array::from_fn(|j| &classes[class[k + j] as usize]);
-                        let sps = std::array::from_fn(|j| &springs[spring[k + j] as usize]);
-                        let four: &mut [LinkState; LANES] =
-                            (&mut state[k..k + LANES]).try_into().expect("four links");
-                        let at = LaneNodes {
-                            pos: &p.pos,
-                            vel: &p.vel,
-                            ang_vel: &p.ang_vel,
-                            ori: &p.ori,
-                            nodes: std::array::from_fn(|j| nodes[k + j].map(|n| n as usize)),
-                        };
-                        let out = &mut loads[k..k + LANES];
-                        let taken = update_link_lanes(cls, sps, four, &at, dt, |j, l| {
-                            energy[j] = l.elastic_energy;
-                            // field by field: a `LinkLoad` built whole was assembled on the
-                            // stack by small stores and copied by one 64-byte load, which
-                            // waits for them all (a failed store forwarding: a fifth of the
-                            // links stage of the net twin)
-                            let out = &mut out[j];
-                            out.force_on_2 = l.force_on_2;
-                            out.lever_torque = l.lever_torque;
-                            out.moment_on_2 = l.moment_on_2;
-                        });
-                        (LANES, taken)
-                    } else {
-                        (1, 0)
-                    };
-                    for j in 0..count {
-                        if taken & (1 << j) != 0 {
-                            // (no event, nothing dissipated: the sum would gain +0, which
-                            // changes no bit of a sum started at +0, never −0)
-                            sums.elastic_energy += energy[j];
-                            continue;
-                        }
-                        let i = k + j;
-                        let kin = kin_of(i);
-                        let cl = &classes[class[i] as usize];
-                        let pl = match plastic.as_deref_mut() {
-                            Some(pl) => &mut pl[i],
-                            None => &mut zero,
-                        };
-                        let sp = &springs[spring[i] as usize];
-                        let f = update_link_parts(cl, sp, &mut state[i], pl, &kin, dt);
-                        match f.event {
-                            LinkEvent::BrokeInTension | LinkEvent::Separated => {
-                                sums.events.broken += 1
-                            }
-                            LinkEvent::LostCohesion => sums.events.decohered += 1,
-                            LinkEvent::None => {}
-                        }
-                        sums.elastic_energy += f.elastic_energy;
-                        sums.dissipated += f.dissipated.total();
-                        loads[i] = LinkLoad {
-                            force_on_2: f.force_on_2,
-                            lever_torque: f.lever_torque,
-                            moment_on_2: f.twist_moment + f.bending_moment,
-                        };
-                    }
-                    k += count;
+        // one chunk's links (`plastic`: their plastic states, or none when no class is
+        // plastic), its sums
+        let step_chunk = |nodes: &[[u32; 2]],
+                          class: &[u32],
+                          spring: &[u32],
+                          state: &mut [LinkState],
+                          loads: &mut [LinkLoad],
+                          mut plastic: Option<&mut [LinkPlastic]>| {
+            let mut sums = LinkUpdate::default();
+            // one zero plastic state for the chunk's links when no class is plastic: a
+            // fragile link never writes it (`a_fragile_link_never_yields`)
+            let mut zero = LinkPlastic::default();
+            let kin_of = |k: usize| {
+                let [a, b] = nodes[k].map(|n| n as usize);
+                LinkKinematics {
+                    x1: p.pos[a],
+                    x2: p.pos[b],
+                    v1: p.vel[a],
+                    v2: p.vel[b],
+                    w1: p.ang_vel[a],
+                    w2: p.ang_vel[b],
+                    q1: p.ori[a],
+                    q2: p.ori[b],
                 }
-                sums
-            })
-            .collect_into_vec(&mut self.chunk_sums);
+            };
+            // four links at once on their common path (`update_link_lanes`: the scalar
+            // law's bits), the scalar law for those off it and for the last few; the
+            // sums added in link order either way
+            let n = nodes.len();
+            let mut k = 0;
+            while k < n {
+                // the lanes' energies, added below in link order with the others'
+                let mut energy = [0.0; LANES];
+                let (count, taken) = if k + LANES <= n {
+                    let cls = std::array::from_fn(|j| &classes[class[k + j] as usize]);
+                    let sps = std::array::from_fn(|j| &springs[spring[k + j] as usize]);
+                    let four: &mut [LinkState; LANES] =
+                        (&mut state[k..k + LANES]).try_into().expect("four links");
+                    let at = LaneNodes {
+                        pos: &p.pos,
+                        vel: &p.vel,
+                        ang_vel: &p.ang_vel,
+                        ori: &p.ori,
+                        nodes: std::array::from_fn(|j| nodes[k + j].map(|n| n as usize)),
+                    };
+                    let out = &mut loads[k..k + LANES];
+                    let taken = update_link_lanes(cls, sps, four, &at, dt, |j, l| {
+                        energy[j] = l.elastic_energy;
+                        // field by field: a `LinkLoad` built whole was assembled on the
+                        // stack by small stores and copied by one 64-byte load, which
+                        // waits for them all (a failed store forwarding: a fifth of the
+                        // links stage of the net twin)
+                        let out = &mut out[j];
+                        out.force_on_2 = l.force_on_2;
+                        out.lever_torque = l.lever_torque;
+                        out.moment_on_2 = l.moment_on_2;
+                    });
+                    (LANES, taken)
+                } else {
+                    (1, 0)
+                };
+                for j in 0..count {
+                    if taken & (1 << j) != 0 {
+                        // (no event, nothing dissipated: the sum would gain +0, which
+                        // changes no bit of a sum started at +0, never −0)
+                        sums.elastic_energy += energy[j];
+                        continue;
+                    }
+                    let i = k + j;
+                    let kin = kin_of(i);
+                    let cl = &classes[class[i] as usize];
+                    let pl = match plastic.as_deref_mut() {
+                        Some(pl) => &mut pl[i],
+                        None => &mut zero,
+                    };
+                    let sp = &springs[spring[i] as usize];
+                    let f = update_link_parts(cl, sp, &mut state[i], pl, &kin, dt);
+                    match f.event {
+                        LinkEvent::BrokeInTension | LinkEvent::Separated => sums.events.broken += 1,
+                        LinkEvent::LostCohesion => sums.events.decohered += 1,
+                        LinkEvent::None => {}
+                    }
+                    sums.elastic_energy += f.elastic_energy;
+                    sums.dissipated += f.dissipated.total();
+                    loads[i] = LinkLoad {
+                        force_on_2: f.force_on_2,
+                        lever_torque: f.lever_torque,
+                        moment_on_2: f.twist_moment + f.bending_moment,
+                    };
+                }
+                k += count;
+            }
+            sums
+        };
+        if self.nodes.len() <= CHUNK {
+            // one chunk (a small structure): on this thread, without a parallel dispatch
+            let plastic = (!self.plastic.is_empty()).then_some(&mut self.plastic[..]);
+            let (state, loads) = (&mut self.state[..], &mut self.loads[..]);
+            let sums = step_chunk(&self.nodes, &self.class, &self.spring, state, loads, plastic);
+            self.chunk_sums.clear();
+            self.chunk_sums.push(sums);
+        } else {
+            let chunks = self.nodes.len().div_ceil(CHUNK);
+            let plastic = if self.plastic.is_empty() {
+                Either::Left((0..chunks).into_par_iter().map(|_| None))
+            } else {
+                Either::Right(self.plastic.par_chunks_mut(CHUNK).map(Some))
+            };
+            (
+                self.nodes.par_chunks(CHUNK),
+                self.class.par_chunks(CHUNK),
+                self.spring.par_chunks(CHUNK),
+                self.state.par_chunks_mut(CHUNK),
+                self.loads.par_chunks_mut(CHUNK),
+            )
+                .into_par_iter()
+                .zip(plastic)
+                .with_max_len(MAX_CHUNKS_PER_TASK)
+                .map(|((nodes, class, spring, state, loads), plastic)| {
+                    step_chunk(nodes, class, spring, state, loads, plastic)
+                })
+                .collect_into_vec(&mut self.chunk_sums);
+        }
         self.chunk_sums.iter().fold(LinkUpdate::default(), |a, c| LinkUpdate {
             events: LinkEvents {
                 broken: a.events.broken + c.events.broken,
