@@ -13,20 +13,20 @@ use crate::dashpots::dashpot_power;
 use crate::gather::{fits_codes, load_nodes, NO_NODE};
 use crate::neighbours::{merged, Pick, Sink};
 use crate::parallel::{MIN_PARALLEL_CHEAP, MIN_PARALLEL_COSTLY};
-
-/// Below this many particles, force and torque are zeroed on one thread.
-const MIN_PARALLEL_ZERO: usize = 8 * MIN_PARALLEL_CHEAP;
 use flexdem_contact::update_frictional_contact;
 use flexdem_elements::virtual_sphere::{distribute_force, Kinematics, NodeLoad};
 use flexdem_elements::Model;
 use flexdem_geom::{Real, Vec3};
 use rayon::prelude::*;
 
+/// Below this many particles, force and torque are zeroed on one thread.
+const MIN_PARALLEL_ZERO: usize = 8 * MIN_PARALLEL_CHEAP;
+
 impl ContactPipeline {
     /// Updates every contact's forces (in parallel) and the free spheres' pairs (their
-    /// births and ends too, see `neighbours.rs`), and adds the node loads to `force` and
-    /// `torque` in key order. Returns what the pairs' births and ends moved the energy
-    /// balance by.
+    /// births and ends too, see `neighbours.rs`), and makes `force` and `torque` anew as the
+    /// sums of the node loads, each particle's in key order. Returns what the pairs' births
+    /// and ends moved the energy balance by.
     pub(crate) fn apply(
         &mut self,
         contacts: &mut Contacts,
