@@ -8,11 +8,11 @@ use crate::contact::BirthReport;
 use crate::dashpots::pair_dashpot_power;
 use crate::neighbours::{LawOut, NeighbourList, PairContact, PairOutcome, Pushed, Sink};
 use crate::pair_keys::key_at;
-use crate::pair_step::{apart, continuing_pair, continuing_spheres, spheres_apart, step_pair};
-use crate::pair_store::{BLOCK, NO_CONTACT};
+use crate::pair_step::{continuing_pair, spheres_apart, step_pair};
+use crate::pair_store::{BlockContacts, BLOCK, NO_CONTACT};
 use crate::parallel::MAX_CHUNKS_PER_TASK;
 use flexdem_elements::virtual_sphere::{Feature, Kinematics, NodeLoad};
-use flexdem_elements::Model;
+use flexdem_elements::{Model, Particles};
 use flexdem_geom::{Real, Vec3};
 use rayon::prelude::*;
 
@@ -213,6 +213,27 @@ impl PairScratch {
     }
 }
 
+/// The step of candidate `n`, two free spheres `ids` whose contact (at `slot` of `block`)
+/// goes on: its law and loads (`continuing_pair`), its energy booked in `book`; None where
+/// the general step has to decide (apart now, centres crossed). Both passes call it.
+#[inline(always)]
+fn went_on(
+    p: &Particles,
+    ids: (u32, u32),
+    slot: u32,
+    block: &mut BlockContacts<PairContact>,
+    book: &mut ChunkBook,
+    n: usize,
+    dt: Real,
+) -> Option<[NodeLoad; 2]> {
+    let mut law = LawOut::new(&mut book.pushed, n);
+    let loads = continuing_pair(p, ids.0, ids.1, slot, block, dt, &mut law)?;
+    let elastic = law.elastic;
+    let c = block.get(slot).expect("a contact that goes on");
+    book.record_continuing(c, elastic);
+    Some(loads)
+}
+
 impl NeighbourList {
     /// One step of every pair (in parallel): whether it touches; a new contact made as the
     /// general pipeline makes it (`contacts::new_contact`) with its birth accounted for; an
@@ -248,20 +269,24 @@ impl NeighbourList {
                 let base = c * PAIR_CHUNK;
                 blocks.iter_mut().zip(slots.chunks_mut(BLOCK)).for_each(|(b, s)| b.tidy(s));
                 for (i, (&ids, slot)) in keys.iter().zip(slots.iter_mut()).enumerate() {
-                    let key = &key_at(first_wall, base + i, ids);
-                    if *slot == NO_CONTACT && apart(p, key) {
-                        continue;
+                    let n = base + i;
+                    if n < first_wall {
+                        // two free spheres: the ids are theirs (`pair_keys::key_at`)
+                        if *slot == NO_CONTACT {
+                            if spheres_apart(p, ids.0 as usize, ids.1 as usize) {
+                                continue;
+                            }
+                        } else if let Some(loads) =
+                            went_on(p, ids, *slot, &mut blocks[i / BLOCK], &mut out.book, n, dt)
+                        {
+                            positions[i] = out.outcomes.len() as u32;
+                            out.outcomes.push((n as u32, PairLoads::of_loads(&loads)));
+                            continue;
+                        }
                     }
+                    let key = &key_at(first_wall, n, ids);
                     let block = &mut blocks[i / BLOCK];
-                    let mut law = LawOut::new(&mut out.book.pushed, base + i);
-                    if let Some(loads) = continuing_spheres(p, key, slot, block, dt, &mut law) {
-                        let elastic = law.elastic;
-                        let c = block.get(*slot).expect("a contact that goes on");
-                        out.book.record_continuing(c, elastic);
-                        positions[i] = out.outcomes.len() as u32;
-                        out.outcomes.push(((base + i) as u32, PairLoads::of_loads(&loads)));
-                        continue;
-                    }
+                    let mut law = LawOut::new(&mut out.book.pushed, n);
                     let mut o = PairOutcome::default();
                     step_pair(model, &k, key, slot, block, dt, &mut o, &mut law);
                     let elastic = law.elastic;
@@ -305,14 +330,9 @@ impl NeighbourList {
                     }
                 } else {
                     let block = &mut self.blocks[n / BLOCK];
-                    let out = &mut chunks[n / PAIR_CHUNK];
-                    let mut law = LawOut::new(&mut out.book.pushed, n);
-                    let (i, j) = ids;
-                    if let Some(loads) = continuing_pair(p, i, j, *slot, block, dt, &mut law) {
-                        let elastic = law.elastic;
-                        let c = block.get(*slot).expect("a contact that goes on");
-                        out.book.record_continuing(c, elastic);
-                        sink(Sink::Before(&(Feature::Particle(i), Feature::Particle(j))));
+                    let book = &mut chunks[n / PAIR_CHUNK].book;
+                    if let Some(loads) = went_on(p, ids, *slot, block, book, n, dt) {
+                        sink(Sink::Before(&(Feature::Particle(ids.0), Feature::Particle(ids.1))));
                         loads.iter().for_each(|l| sink(Sink::Load(l)));
                         continue;
                     }
