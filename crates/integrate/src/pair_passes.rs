@@ -8,7 +8,7 @@ use crate::contact::BirthReport;
 use crate::dashpots::pair_dashpot_power;
 use crate::neighbours::{LawOut, NeighbourList, PairContact, PairOutcome, Pushed, Sink};
 use crate::pair_keys::key_at;
-use crate::pair_step::{continuing_pair, spheres_apart, step_pair};
+use crate::pair_step::{continuing_pair, first_not_apart, step_pair};
 use crate::pair_store::{BlockContacts, BLOCK, NO_CONTACT};
 use crate::parallel::MAX_CHUNKS_PER_TASK;
 use flexdem_elements::virtual_sphere::{Feature, Kinematics, NodeLoad};
@@ -268,33 +268,39 @@ impl NeighbourList {
             .for_each(|(c, ((((keys, slots), blocks), positions), out))| {
                 let base = c * PAIR_CHUNK;
                 blocks.iter_mut().zip(slots.chunks_mut(BLOCK)).for_each(|(b, s)| b.tidy(s));
-                for (i, (&ids, slot)) in keys.iter().zip(slots.iter_mut()).enumerate() {
-                    let n = base + i;
-                    if n < first_wall {
-                        // two free spheres: the ids are theirs (`pair_keys::key_at`)
-                        if *slot == NO_CONTACT {
-                            if spheres_apart(p, ids.0 as usize, ids.1 as usize) {
-                                continue;
+                // (the chunk's free spheres' pairs: `..spheres`)
+                let spheres = first_wall.saturating_sub(base).min(keys.len());
+                let mut i = 0;
+                while i < keys.len() {
+                    // the spheres apart without a contact, in a loop of their own
+                    i = first_not_apart(p, &keys[..spheres], &slots[..spheres], i);
+                    if i == keys.len() {
+                        break;
+                    }
+                    let (n, ids, slot) = (base + i, keys[i], &mut slots[i]);
+                    'pair: {
+                        if n < first_wall && *slot != NO_CONTACT {
+                            // two free spheres (the ids are theirs) in contact
+                            let (block, book) = (&mut blocks[i / BLOCK], &mut out.book);
+                            if let Some(loads) = went_on(p, ids, *slot, block, book, n, dt) {
+                                positions[i] = out.outcomes.len() as u32;
+                                out.outcomes.push((n as u32, PairLoads::of_loads(&loads)));
+                                break 'pair;
                             }
-                        } else if let Some(loads) =
-                            went_on(p, ids, *slot, &mut blocks[i / BLOCK], &mut out.book, n, dt)
-                        {
+                        }
+                        let key = &key_at(first_wall, n, ids);
+                        let block = &mut blocks[i / BLOCK];
+                        let mut law = LawOut::new(&mut out.book.pushed, n);
+                        let mut o = PairOutcome::default();
+                        step_pair(model, &k, key, slot, block, dt, &mut o, &mut law);
+                        let elastic = law.elastic;
+                        out.book.record(n, &o, block.get(*slot), elastic);
+                        if *slot != NO_CONTACT {
                             positions[i] = out.outcomes.len() as u32;
-                            out.outcomes.push((n as u32, PairLoads::of_loads(&loads)));
-                            continue;
+                            out.outcomes.push((n as u32, PairLoads::of(&o)));
                         }
                     }
-                    let key = &key_at(first_wall, n, ids);
-                    let block = &mut blocks[i / BLOCK];
-                    let mut law = LawOut::new(&mut out.book.pushed, n);
-                    let mut o = PairOutcome::default();
-                    step_pair(model, &k, key, slot, block, dt, &mut o, &mut law);
-                    let elastic = law.elastic;
-                    out.book.record(base + i, &o, block.get(*slot), elastic);
-                    if *slot != NO_CONTACT {
-                        positions[i] = out.outcomes.len() as u32;
-                        out.outcomes.push(((base + i) as u32, PairLoads::of(&o)));
-                    }
+                    i += 1;
                 }
             });
         let (report, total) = scratch.totals(used, ended_dissipation);
@@ -320,37 +326,43 @@ impl NeighbourList {
         let chunks = chunks_for(&mut scratch.chunks, self.keys.len());
         self.blocks.iter_mut().zip(self.slots.chunks_mut(BLOCK)).for_each(|(b, s)| b.tidy(s));
         let first_wall = self.keys.first_wall();
-        for (n, (&ids, slot)) in self.keys.ids().iter().zip(self.slots.iter_mut()).enumerate() {
-            if n < first_wall {
-                // two free spheres: the ids are theirs (`pair_keys::key_at`)
-                if *slot == NO_CONTACT {
-                    if spheres_apart(p, ids.0 as usize, ids.1 as usize) {
-                        // (what step_pair would say at more cost: nothing happened)
-                        continue;
-                    }
-                } else {
+        let all_ids = self.keys.ids();
+        let spheres = first_wall.min(all_ids.len());
+        let mut n = 0;
+        while n < all_ids.len() {
+            // the spheres apart without a contact (what step_pair would say at more cost:
+            // nothing happened), in a loop of their own
+            n = first_not_apart(p, &all_ids[..spheres], &self.slots[..spheres], n);
+            if n == all_ids.len() {
+                break;
+            }
+            let (ids, slot) = (all_ids[n], &mut self.slots[n]);
+            'pair: {
+                if n < first_wall && *slot != NO_CONTACT {
+                    // two free spheres (the ids are theirs, `pair_keys::key_at`) in contact
                     let block = &mut self.blocks[n / BLOCK];
                     let book = &mut chunks[n / PAIR_CHUNK].book;
                     if let Some(loads) = went_on(p, ids, *slot, block, book, n, dt) {
                         sink(Sink::Before(&(Feature::Particle(ids.0), Feature::Particle(ids.1))));
                         loads.iter().for_each(|l| sink(Sink::Load(l)));
-                        continue;
+                        break 'pair;
                     }
                 }
+                let key = &key_at(first_wall, n, ids);
+                let block = &mut self.blocks[n / BLOCK];
+                let out = &mut chunks[n / PAIR_CHUNK];
+                let mut law = LawOut::new(&mut out.book.pushed, n);
+                let mut o = PairOutcome::default();
+                step_pair(model, &k, key, slot, block, dt, &mut o, &mut law);
+                let elastic = law.elastic;
+                out.book.record(n, &o, block.get(*slot), elastic);
+                if *slot != NO_CONTACT {
+                    sink(Sink::Before(key));
+                    let first = usize::from(matches!(key.0, Feature::Wall(_)));
+                    o.loads[first..].iter().for_each(|l| sink(Sink::Load(l)));
+                }
             }
-            let key = &key_at(first_wall, n, ids);
-            let block = &mut self.blocks[n / BLOCK];
-            let out = &mut chunks[n / PAIR_CHUNK];
-            let mut law = LawOut::new(&mut out.book.pushed, n);
-            let mut o = PairOutcome::default();
-            step_pair(model, &k, key, slot, block, dt, &mut o, &mut law);
-            let elastic = law.elastic;
-            out.book.record(n, &o, block.get(*slot), elastic);
-            if *slot != NO_CONTACT {
-                sink(Sink::Before(key));
-                let first = usize::from(matches!(key.0, Feature::Wall(_)));
-                o.loads[first..].iter().for_each(|l| sink(Sink::Load(l)));
-            }
+            n += 1;
         }
         let (report, total) = scratch.totals(used, ended_dissipation);
         self.sums = Some((total.elastic, total.friction));
