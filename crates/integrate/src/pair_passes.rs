@@ -107,6 +107,27 @@ impl PairLoads {
     }
 }
 
+/// What [`NeighbourList::load_view`] reads: the slices taken once, where a call per load
+/// through the list and its scratch reloaded their pointers each time.
+pub(crate) struct PairLoadView<'a> {
+    slots: &'a [u32],
+    position: &'a [u32],
+    chunks: &'a [ChunkOut],
+}
+
+impl PairLoadView<'_> {
+    /// Body `side`'s node load of candidate pair `n`, if the pair touches (its node is not
+    /// filled in: the caller sums into the particle it asked for).
+    #[inline]
+    pub(crate) fn load(&self, n: usize, side: usize) -> Option<NodeLoad> {
+        if self.slots[n] == NO_CONTACT {
+            return None;
+        }
+        let position = self.position[n] as usize;
+        Some(self.chunks[n / PAIR_CHUNK].outcomes[position].1.load(side, u32::MAX))
+    }
+}
+
 /// One chunk's part of the last update.
 #[derive(Clone, Debug, Default)]
 struct ChunkOut {
@@ -405,16 +426,10 @@ impl NeighbourList {
         )
     }
 
-    /// Body `side`'s node load of candidate pair `n` at the last parallel update
-    /// ([`NeighbourList::update`]), if the pair touches.
-    #[inline]
-    pub(crate) fn load_of(&self, scratch: &PairScratch, n: usize, side: usize) -> Option<NodeLoad> {
-        if !self.touches(n) {
-            return None;
-        }
-        let position = scratch.position[n] as usize;
-        // (the node is not read: the caller sums into the particle it asked for)
-        Some(scratch.chunks[n / PAIR_CHUNK].outcomes[position].1.load(side, u32::MAX))
+    /// The touching pairs' loads at the last parallel update ([`NeighbourList::update`]),
+    /// for their gather per particle (`gather.rs`).
+    pub(crate) fn load_view<'a>(&'a self, scratch: &'a PairScratch) -> PairLoadView<'a> {
+        PairLoadView { slots: &self.slots, position: &scratch.position, chunks: &scratch.chunks }
     }
 
     /// Elastic energy stored at the last update.
