@@ -139,10 +139,11 @@ impl LoadIndex {
         chunks.with_max_len(MAX_CHUNKS_PER_TASK).for_each(|(c, (f, t))| {
             for (k, (f, t)) in f.iter_mut().zip(t).enumerate() {
                 let i = c * CHUNK + k;
-                if self.general_offsets.is_empty() {
-                    // no general contact (a granular scene): the pairs' entries alone, in
-                    // their order, without the merge by key (two thirds of the gather's
-                    // instructions in a packing), summed in registers and stored once
+                if range(&self.general_offsets, &self.general_entries, i).is_empty() {
+                    // no general contact on it (every particle of a granular scene): the
+                    // pairs' entries alone, in their order, without the merge by key (two
+                    // thirds of the gather's instructions in a packing), summed in
+                    // registers and stored once
                     let (mut fi, mut ti) = (Vec3::zeros(), Vec3::zeros());
                     for &code in self.pair_entries(i) {
                         if let Some(l) = pair_load(code) {
