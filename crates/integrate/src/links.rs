@@ -430,9 +430,37 @@ impl Links {
         codes.iter().map(|&code| (code / 2) as usize)
     }
 
-    /// Adds the last update's loads to the per-particle `force` and `torque` sums, node by
-    /// node in link order (parallel over nodes, independent of the thread count).
+    /// Adds the last update's loads to the per-particle `force` and `torque` sums, each
+    /// node's in link order: for a structure of one chunk (a net, a cantilever) link after
+    /// link on this thread ([`Links::add_loads_in_link_order`]), where the per-node sum's
+    /// index and dispatch cost a small scene more than its additions; else node by node in
+    /// parallel ([`Links::add_loads_per_node`]). The same bits either way, whatever the
+    /// number of threads.
     pub fn add_loads(&self, force: &mut [Vec3], torque: &mut [Vec3]) {
+        let rows = self.node_offsets.len().saturating_sub(1);
+        if self.loads.len() <= CHUNK && rows <= force.len() && rows <= torque.len() {
+            self.add_loads_in_link_order(force, torque);
+        } else {
+            self.add_loads_per_node(force, torque);
+        }
+    }
+
+    /// [`Links::add_loads`] link after link: each node's loads come in link order, as the
+    /// per-node sum adds them (node 1 takes F·(−1) = −F and L + M·(−1) = L − M, node 2
+    /// F·1 and L + M·1: that sum's operations). Every node of a link must have its place in
+    /// `force` and `torque`.
+    fn add_loads_in_link_order(&self, force: &mut [Vec3], torque: &mut [Vec3]) {
+        for (l, &[a, b]) in self.loads.iter().zip(&self.nodes) {
+            let (a, b) = (a as usize, b as usize);
+            force[a] += l.force_on_2 * -1.0;
+            torque[a] += l.lever_torque + l.moment_on_2 * -1.0;
+            force[b] += l.force_on_2 * 1.0;
+            torque[b] += l.lever_torque + l.moment_on_2 * 1.0;
+        }
+    }
+
+    /// [`Links::add_loads`] node by node in link order (CSR), in parallel over the nodes.
+    fn add_loads_per_node(&self, force: &mut [Vec3], torque: &mut [Vec3]) {
         let n = self.node_offsets.len().saturating_sub(1).min(force.len());
         (&mut force[..n], &mut torque[..n])
             .into_par_iter()

@@ -173,3 +173,41 @@ fn the_node_index_stops_at_the_last_node() {
     old_none.node_offsets = vec![0, 0];
     assert!(old_none.check_against(&free));
 }
+
+/// A net's loads summed link after link (the path of a structure of one chunk) have the
+/// bits of the per-node sum, onto forces and torques already holding other loads.
+#[test]
+fn loads_summed_link_after_link_are_the_per_node_sums() {
+    use flexdem_elements::builders::net;
+    let mut model = Model::new();
+    let mat = model.add_material(Material::new(1e7, 0.3, 1000.0, 0.5).unwrap()).unwrap();
+    let opts = StructureOptions::new("net", 0.01, mat);
+    let (x, y) = (Vec3::x(), Vec3::y());
+    net(&mut model, Vec3::zeros(), x, y, 1.0, 1.0, 6, 5, true, &opts).unwrap();
+    model.add_sphere(Vec3::new(0.5, 0.5, 1.0), 0.1, mat).unwrap();
+    let mut links = Links::from_model(&model, LinkKinematicsMode::Beam);
+    let mut state = 0x9e3779b97f4a7c15u64;
+    let mut r = move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as Real / (1u64 << 53) as Real - 0.5
+    };
+    let mut v = || Vec3::new(r(), r(), r());
+    for l in &mut links.loads {
+        *l = LinkLoad { force_on_2: v() * 1e3, lever_torque: v(), moment_on_2: v() * 0.1 };
+    }
+    let n = model.particles.len();
+    let force: Vec<Vec3> = (0..n).map(|_| v() * 10.0).collect();
+    let torque: Vec<Vec3> = (0..n).map(|_| v()).collect();
+    let (mut f1, mut t1, mut f2, mut t2) = (force.clone(), torque.clone(), force, torque);
+    assert!(links.len() <= CHUNK);
+    links.add_loads(&mut f1, &mut t1);
+    links.add_loads_per_node(&mut f2, &mut t2);
+    let bits =
+        |x: &[Vec3]| x.iter().flat_map(|v| v.iter().map(|c| c.to_bits())).collect::<Vec<_>>();
+    assert_eq!(bits(&f1), bits(&f2));
+    assert_eq!(bits(&t1), bits(&t2));
+    // (the free sphere after the nodes took nothing)
+    assert!(f1[n - 1] == f2[n - 1]);
+}
