@@ -7,7 +7,7 @@
 use crate::contact::BirthReport;
 use crate::dashpots::pair_dashpot_power;
 use crate::neighbours::{LawOut, NeighbourList, PairContact, PairOutcome, Pushed, Sink};
-use crate::pair_keys::key_at;
+use crate::pair_keys::{key_at, ContactKey};
 use crate::pair_step::{continuing_pair, first_not_apart, step_pair};
 use crate::pair_store::{BlockContacts, BLOCK, NO_CONTACT};
 use crate::parallel::MAX_CHUNKS_PER_TASK;
@@ -255,6 +255,29 @@ fn went_on(
     Some(loads)
 }
 
+/// The general step of candidate `n` (`key`, its contact at `slot` of `block`): its
+/// births, ends and law (`step_pair`), booked in `book`; its outcome when the pair touches
+/// after it. Both passes call it for the pairs `went_on` and the apart runs leave.
+#[allow(clippy::too_many_arguments, reason = "one pair's inputs and its book")]
+#[inline(always)]
+fn general_step(
+    model: &Model,
+    k: &Kinematics<'_>,
+    key: &ContactKey,
+    slot: &mut u32,
+    block: &mut BlockContacts<PairContact>,
+    book: &mut ChunkBook,
+    n: usize,
+    dt: Real,
+) -> Option<PairOutcome> {
+    let mut law = LawOut::new(&mut book.pushed, n);
+    let mut o = PairOutcome::default();
+    step_pair(model, k, key, slot, block, dt, &mut o, &mut law);
+    let elastic = law.elastic;
+    book.record(n, &o, block.get(*slot), elastic);
+    (*slot != NO_CONTACT).then_some(o)
+}
+
 impl NeighbourList {
     /// One step of every pair (in parallel): whether it touches; a new contact made as the
     /// general pipeline makes it (`contacts::new_contact`) with its birth accounted for; an
@@ -310,13 +333,8 @@ impl NeighbourList {
                             }
                         }
                         let key = &key_at(first_wall, n, ids);
-                        let block = &mut blocks[i / BLOCK];
-                        let mut law = LawOut::new(&mut out.book.pushed, n);
-                        let mut o = PairOutcome::default();
-                        step_pair(model, &k, key, slot, block, dt, &mut o, &mut law);
-                        let elastic = law.elastic;
-                        out.book.record(n, &o, block.get(*slot), elastic);
-                        if *slot != NO_CONTACT {
+                        let (block, book) = (&mut blocks[i / BLOCK], &mut out.book);
+                        if let Some(o) = general_step(model, &k, key, slot, block, book, n, dt) {
                             positions[i] = out.outcomes.len() as u32;
                             out.outcomes.push((n as u32, PairLoads::of(&o)));
                         }
@@ -371,13 +389,8 @@ impl NeighbourList {
                 }
                 let key = &key_at(first_wall, n, ids);
                 let block = &mut self.blocks[n / BLOCK];
-                let out = &mut chunks[n / PAIR_CHUNK];
-                let mut law = LawOut::new(&mut out.book.pushed, n);
-                let mut o = PairOutcome::default();
-                step_pair(model, &k, key, slot, block, dt, &mut o, &mut law);
-                let elastic = law.elastic;
-                out.book.record(n, &o, block.get(*slot), elastic);
-                if *slot != NO_CONTACT {
+                let book = &mut chunks[n / PAIR_CHUNK].book;
+                if let Some(o) = general_step(model, &k, key, slot, block, book, n, dt) {
                     sink(Sink::Before(key));
                     let first = usize::from(matches!(key.0, Feature::Wall(_)));
                     o.loads[first..].iter().for_each(|l| sink(Sink::Load(l)));
