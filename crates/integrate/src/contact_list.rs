@@ -4,7 +4,8 @@
 //! and over every contact in key order).
 
 use crate::contact::Contact;
-use crate::neighbours::{merged, merged_from, sites, NeighbourList, Pick};
+use crate::neighbours::{merged, sites, NeighbourList, Pick};
+use crate::pair_passes::LastUpdate;
 use flexdem_contact::FrictionalParams;
 use flexdem_elements::virtual_sphere::{Feature, Site};
 use flexdem_elements::Model;
@@ -66,33 +67,57 @@ impl Contacts {
     }
 
     /// Every contact, in key order, as a [`Contact`] (the free spheres' made from their
-    /// neighbour list): for output and inspection, not for the step.
+    /// neighbour list): for output and inspection, not for the step. The free spheres'
+    /// forces are those of their last update given `last` (`Simulation::contacts` gives it);
+    /// without it a damped pair's force is its springs' alone (the dashpots' push is not part
+    /// of the state, see `NeighbourList::contact`).
     pub fn all(&self, model: &Model) -> Vec<Contact> {
+        self.all_after(model, None)
+    }
+
+    /// [`Contacts::all`] with the free spheres' forces of their last update, `last`.
+    pub(crate) fn all_after(&self, model: &Model, last: Option<&LastUpdate<'_>>) -> Vec<Contact> {
         merged(&self.list, &self.pairs)
             .map(|pick| match pick {
                 Pick::General(n) => self.list[n].clone(),
                 Pick::Pair(n) => {
-                    self.pairs.contact(model, n).expect("merged yields touching pairs")
+                    self.pairs.contact(model, n, last).expect("merged yields touching pairs")
                 }
             })
             .collect()
     }
 
     /// Calls `f(wall, force on the body, normal force, kn)` on every wall contact, in key
-    /// order (nothing made: the walls' loads are summed every step). The keys sort walls
-    /// last: only the two lists' tails are looked at.
-    pub(crate) fn for_each_on_wall(&self, mut f: impl FnMut(u32, &Vec3, Real, Real)) {
+    /// order (nothing made: the walls' loads are summed every step), the free spheres' as
+    /// their last update (`last`) applied them (none when it was of other candidates: the
+    /// forces are the law's, and a wall's pairs have not been updated since a load). The keys
+    /// sort walls last: only the general list's tail is looked at.
+    pub(crate) fn for_each_on_wall(
+        &self,
+        last: &LastUpdate<'_>,
+        mut f: impl FnMut(u32, &Vec3, Real, Real),
+    ) {
         let g = self.list.partition_point(|c| !matches!(c.key().0, Feature::Wall(_)));
-        for pick in merged_from(&self.list, &self.pairs, g, self.pairs.first_wall()) {
-            let (key, force, normal_force, kn) = match pick {
-                Pick::General(n) => {
-                    let c = &self.list[n];
-                    (c.key(), c.forces.force_on_2, c.forces.normal_force, c.params.kn)
-                }
-                Pick::Pair(n) => {
-                    let (key, c) = self.pairs.get(n);
-                    (key, c.force_on_2(), c.applied.normal_force, c.params.kn)
-                }
+        let mut general = self.list[g..].iter().peekable();
+        let mut pairs = last.walls().map(|(n, applied)| {
+            let (key, c) = self.pairs.get(*n as usize);
+            (key, c.state.normal * applied.normal_force + applied.shear_force, applied, c)
+        });
+        let mut pair = pairs.next();
+        loop {
+            let take_general = match (general.peek(), &pair) {
+                (Some(c), Some((key, ..))) => c.key() < *key,
+                (Some(_), None) => true,
+                (None, Some(_)) => false,
+                (None, None) => return,
+            };
+            let (key, force, normal_force, kn) = if take_general {
+                let c = general.next().expect("peeked");
+                (c.key(), c.forces.force_on_2, c.forces.normal_force, c.params.kn)
+            } else {
+                let (key, force, applied, c) = pair.take().expect("a pair");
+                pair = pairs.next();
+                (key, force, applied.normal_force, c.params.kn)
             };
             if let Feature::Wall(w) = key.0 {
                 f(w, &force, normal_force, kn);

@@ -2,6 +2,7 @@
 //! watch: the contact and the link holding the most elastic energy, and the fastest particle,
 //! each with its bodies and their structures.
 
+use crate::pair_passes::PairScratch;
 use crate::state::State;
 use flexdem_elements::virtual_sphere::Feature;
 use flexdem_elements::Model;
@@ -39,11 +40,13 @@ fn feature(model: &Model, f: Feature) -> String {
     }
 }
 
-/// The contact and the link holding the most elastic energy and the fastest particle.
-pub(crate) fn describe(state: &State) -> String {
+/// The contact and the link holding the most elastic energy and the fastest particle (the
+/// free spheres' contacts with the forces of their last update, in `pairs`).
+pub(crate) fn describe(state: &State, pairs: &PairScratch) -> String {
     let model = &state.model;
     let mut parts = Vec::new();
-    let all = state.contacts.all(model);
+    let last = state.contacts.pairs.last_update(pairs);
+    let all = state.contacts.all_after(model, Some(&last));
     let contact =
         all.iter().max_by(|a, b| a.forces.elastic_energy.total_cmp(&b.forces.elastic_energy));
     match contact {

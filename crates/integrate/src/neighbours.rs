@@ -13,33 +13,32 @@
 //! of the contacts' keys, merged with the general contacts' ([`merged`]): the results do not
 //! depend on which pipeline a contact went through, nor on the thread count.
 
-use crate::contact::{Contact, SPHERE_OWNER, WALL_OWNER};
+use crate::contact::{geometry_of, Contact, SPHERE_OWNER, WALL_OWNER};
 pub use crate::pair_keys::ContactKey;
 use crate::pair_keys::PairKeys;
+use crate::pair_passes::LastUpdate;
 use crate::pair_store::{blocks_for, BlockContacts, BLOCK, NO_CONTACT};
 use flexdem_contact::{
     spring_energy, spring_energy_squared, ContactForces, FrictionalContact, FrictionalParams,
 };
-use flexdem_elements::virtual_sphere::{Feature, NodeLoad, Site};
+use flexdem_elements::virtual_sphere::{Feature, Kinematics, NodeLoad, Site};
 use flexdem_elements::Model;
 use flexdem_geom::{Real, Vec3};
 use serde::{Deserialize, Serialize};
 
 /// The state of a touching pair: what a [`Contact`] holds less what the key says (the sites
-/// and the owners), and of the law's output only the force it applied (176 bytes where a
-/// [`Contact`] is 320: the rest of [`ContactForces`] is made from it when asked,
-/// [`PairContact::forces`]).
+/// and the owners) and less what the last update gave, which is made when asked (its
+/// forces, [`PairContact::applied`] and [`PairContact::forces`]; its point,
+/// `NeighbourList::contact`): 112 bytes where a [`Contact`] is 320. The pairs' step reads
+/// and writes all of it and nothing else (it was 176 bytes with the force applied and the
+/// point written at every update for output alone: 40 % more memory to stream through per
+/// step; the LAMMPS twin's contact stage took 5–15 % longer with it).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct PairContact {
     /// Stiffnesses, friction and dashpots.
     pub params: FrictionalParams,
     /// Shear force, last normal, dissipation.
     pub state: FrictionalContact,
-    /// The force of the last update (not saved: the next update makes it).
-    #[serde(skip)]
-    pub applied: AppliedForce,
-    /// Contact point at the last update.
-    pub point: Vec3,
 }
 
 /// The force a pair contact's last update applied, as the law gave it
@@ -63,20 +62,42 @@ impl PairContact {
             + spring_energy_squared(self.state.shear_force.norm_squared(), self.params.ks)
     }
 
-    /// Total force of the last update on body 2, `Fn·n + Fs` (the law's `force_on_2`, by the
-    /// same operations: the normal is the one the update stored).
-    #[inline]
-    pub fn force_on_2(&self) -> Vec3 {
-        self.state.normal * self.applied.normal_force + self.applied.shear_force
+    /// The force the last update applied, made from the state and `dashpot`, the force its
+    /// dashpots pushed body 2 with (None when they did not push). The law leaves its springs
+    /// in the state: without a dashpot's push the force is theirs, the law's exactly
+    /// (`Fn = kn·δ`, and the shear spring, which the law sets to the capped force when it
+    /// slides); with one, `Fn = kn·δ + fd·n` and `Fs = Fs,spring + fd − (fd·n)·n` (the law's
+    /// to round-off; an `Fn` within the round-off of that sum of zero is the law's clamp of
+    /// Fn at zero, and is zero). Sliding: `|Fs|` at the Coulomb limit `tanφ·Fn`, to round-off (a limit of
+    /// zero counts as sliding).
+    pub fn applied(&self, dashpot: Option<&Vec3>) -> AppliedForce {
+        let s = &self.state;
+        let (normal_force, shear_force) = match dashpot {
+            Some(fd) => {
+                let along = fd.dot(&s.normal);
+                // the law clamps Fn at zero (the dashpot never pulls): a force within the
+                // round-off of this sum of zero is that clamp
+                let fn_ = s.normal_force + along;
+                let round_off = 1e-12 * (s.normal_force.abs() + fd.norm());
+                let fn_ = if fn_ <= round_off { 0.0 } else { fn_ };
+                (fn_, s.shear_force + (fd - s.normal * along))
+            }
+            None => (s.normal_force, s.shear_force),
+        };
+        let limit = (normal_force * self.params.tan_phi).max(0.0);
+        let sliding = shear_force.norm_squared() >= limit * limit * (1.0 - 1e-9);
+        AppliedForce { normal_force, shear_force, sliding }
     }
 
-    /// The forces of the last update as the law returned them, made from the applied force
-    /// and the state: the forces and the elastic energy exactly; the dashpots' part as
+    /// The forces of the last update as the law returned them, made from the force it
+    /// applied (`a`: [`PairContact::applied`], or a wall pair's as its update kept it) and the
+    /// state: the forces (`force_on_2 = Fn·n + Fs`, with the normal the update stored) and
+    /// the elastic energy as `a` and the state have them; the dashpots' part as
     /// `(Fn − kn·δ)·n + (Fs − Fs,spring)` (the law's to round-off; zero without dashpots);
     /// the update's own dissipation is not kept (zero here: the contact's lifetime friction
     /// is `state.dissipated_friction`).
-    pub fn forces(&self) -> ContactForces {
-        let (a, s) = (&self.applied, &self.state);
+    pub fn forces(&self, a: &AppliedForce) -> ContactForces {
+        let s = &self.state;
         let dashpot_force = if self.params.is_damped() {
             s.normal * (a.normal_force - s.normal_force) + (a.shear_force - s.shear_force)
         } else {
@@ -85,7 +106,7 @@ impl PairContact {
         ContactForces {
             normal_force: a.normal_force,
             shear_force: a.shear_force,
-            force_on_2: self.force_on_2(),
+            force_on_2: s.normal * a.normal_force + a.shear_force,
             dashpot_force,
             elastic_energy: self.elastic_energy(),
             dissipated: Default::default(),
@@ -156,11 +177,13 @@ impl PartialEq for NeighbourList {
     }
 }
 
-/// What one pair did at a step: its node loads (body 1's unused for a wall), and what its
-/// birth or end moved the energy balance by.
+/// What one pair did at a step: its node loads (body 1's unused for a wall) and the force
+/// its law applied when it touches after the step, and what its birth or end moved the
+/// energy balance by.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct PairOutcome {
     pub(crate) loads: [NodeLoad; 2],
+    pub(crate) applied: AppliedForce,
     pub(crate) born_energy: Real,
     pub(crate) released: Real,
     pub(crate) ended_dissipation: Real,
@@ -173,6 +196,7 @@ impl Default for PairOutcome {
         let none = NodeLoad { node: 0, force: Vec3::zeros(), torque: Vec3::zeros() };
         PairOutcome {
             loads: [none; 2],
+            applied: AppliedForce::default(),
             born_energy: 0.0,
             released: 0.0,
             ended_dissipation: 0.0,
@@ -271,19 +295,35 @@ impl NeighbourList {
         self.keys.iter().enumerate().filter_map(|(n, k)| Some((k, self.contact_at(n)?)))
     }
 
-    /// The pair at `index` (of the candidates) as a [`Contact`], if it touches.
-    pub(crate) fn contact(&self, model: &Model, index: usize) -> Option<Contact> {
+    /// The pair at `index` (of the candidates) as a [`Contact`], if it touches: its forces
+    /// those of its last update (`last`, see [`LastUpdate`]: without it, a damped pair's are
+    /// its springs' alone), its point the contact point of the bodies where they are now
+    /// (`contact::geometry_of` with the normal of the last update: the point is not kept from
+    /// step to step, see [`PairContact`]).
+    pub(crate) fn contact(
+        &self,
+        model: &Model,
+        index: usize,
+        last: Option<&LastUpdate<'_>>,
+    ) -> Option<Contact> {
         let c = self.contact_at(index)?;
         let key = &self.keys.get(index);
         let (site1, site2) = sites(model, key);
+        let p = &model.particles;
+        let k = Kinematics { pos: &p.pos, vel: &p.vel, ang_vel: &p.ang_vel };
+        let (_, _, g) = geometry_of(model, &k, &site1, &site2, &c.state.normal);
+        let applied = match last {
+            Some(last) => last.applied(c, index),
+            None => c.applied(None),
+        };
         Some(Contact {
             site1,
             site2,
             owners: owners(key),
             params: c.params,
             state: c.state.clone(),
-            forces: c.forces(),
-            point: c.point,
+            forces: c.forces(&applied),
+            point: g.point,
         })
     }
 
@@ -310,11 +350,6 @@ impl NeighbourList {
     /// This set of candidates' generation (see the field).
     pub(crate) fn generation(&self) -> u64 {
         self.generation
-    }
-
-    /// The index of the first candidate with a wall (the keys sort walls last).
-    pub(crate) fn first_wall(&self) -> usize {
-        self.keys.first_wall()
     }
 
     /// Whether every pair refers to particles and walls of a model of `particles` particles
@@ -408,16 +443,7 @@ pub(crate) fn merged<'a>(
     general: &'a [Contact],
     pairs: &'a NeighbourList,
 ) -> impl Iterator<Item = Pick> + 'a {
-    merged_from(general, pairs, 0, 0)
-}
-
-/// [`merged`] from the general contact `g` and the candidate pair `n` on.
-pub(crate) fn merged_from<'a>(
-    general: &'a [Contact],
-    pairs: &'a NeighbourList,
-    mut g: usize,
-    mut n: usize,
-) -> impl Iterator<Item = Pick> + 'a {
+    let (mut g, mut n) = (0, 0);
     std::iter::from_fn(move || {
         while n < pairs.keys.len() && !pairs.touches(n) {
             n += 1;
@@ -490,7 +516,7 @@ mod tests {
         // slot, `pair_keys.rs`); the 1.5 to 2 touching ones: a contact each besides (its
         // size known: a change shows here)
         assert_eq!(size_of::<(u32, u32)>() + size_of::<u32>(), 12);
-        assert_eq!(size_of::<PairContact>(), 176);
+        assert_eq!(size_of::<PairContact>(), 112);
     }
 
     impl NeighbourList {
@@ -500,12 +526,13 @@ mod tests {
         }
     }
 
-    fn contact(point: Real) -> PairContact {
+    /// A contact told apart by its normal force.
+    fn contact(normal_force: Real) -> PairContact {
+        let mut state = FrictionalContact::new(Vec3::z());
+        state.normal_force = normal_force;
         PairContact {
             params: FrictionalParams { kn: 1.0, ks: 0.5, tan_phi: 0.3, cn: 0.0, ct: 0.0 },
-            state: FrictionalContact::new(Vec3::z()),
-            applied: AppliedForce::default(),
-            point: Vec3::repeat(point),
+            state,
         }
     }
 
@@ -517,7 +544,7 @@ mod tests {
         list.set(1, contact(2.0)); // (0, 2)
         list.set(3, contact(3.0)); // wall 0, particle 1
         list.rebuild(vec![(0, 2), (2, 3)], &[]);
-        let touching: Vec<_> = list.touching().map(|(k, c)| (k, c.point.x)).collect();
+        let touching: Vec<_> = list.touching().map(|(k, c)| (k, c.state.normal_force)).collect();
         assert_eq!(
             touching,
             vec![

@@ -6,7 +6,9 @@
 
 use crate::contact::BirthReport;
 use crate::dashpots::pair_dashpot_power;
-use crate::neighbours::{LawOut, NeighbourList, PairContact, PairOutcome, Pushed, Sink};
+use crate::neighbours::{
+    AppliedForce, LawOut, NeighbourList, PairContact, PairOutcome, Pushed, Sink,
+};
 use crate::pair_keys::{key_at, ContactKey};
 use crate::pair_step::{continuing_pair, first_not_apart, step_pair};
 use crate::pair_store::{BlockContacts, BLOCK, NO_CONTACT};
@@ -146,6 +148,11 @@ struct ChunkBook {
     /// The touching pairs whose dashpots pushed, in key order: what `dashpot_dissipation`
     /// needs, gathered while each contact was at hand.
     pushed: Vec<Pushed>,
+    /// The touching pairs of a wall and a sphere, in key order: each one's index and the
+    /// force its law applied, as it gave it (the walls' loads, `Contacts::for_each_on_wall`,
+    /// steer servos and make the walls' power: the law's bits, where a sphere pair's force
+    /// is made from its state when asked, [`PairContact::applied`]).
+    walls: Vec<(u32, AppliedForce)>,
     sums: ChunkSums,
 }
 
@@ -181,6 +188,39 @@ pub(crate) struct PairScratch {
     /// Per candidate pair, where its outcome is in its chunk's list at the last parallel
     /// update (written for the pairs it stepped only).
     position: Vec<u32>,
+    /// The generation of the candidates of the last update (`NeighbourList::generation`;
+    /// 0 before any): its records are theirs.
+    generation: u64,
+}
+
+/// What the last update of a neighbour list gave besides its contacts' states, for the
+/// forces of its touching pairs: the dashpots' force of each pair they pushed, and the
+/// force applied on each pair of a wall. Empty when the scratch's last update was of other
+/// candidates than the list's (a rebuild, a clear or a load since; none in a step, which
+/// updates the pairs after its rebuild): then each pair's force is its springs'.
+pub(crate) struct LastUpdate<'a> {
+    chunks: &'a [ChunkOut],
+}
+
+impl LastUpdate<'_> {
+    /// The force the last update applied to touching pair `n` (`c`, its contact): a wall
+    /// pair's as its law gave it, else [`PairContact::applied`] with the dashpots' record.
+    pub(crate) fn applied(&self, c: &PairContact, n: usize) -> AppliedForce {
+        let Some(book) = self.chunks.get(n / PAIR_CHUNK).map(|c| &c.book) else {
+            return c.applied(None);
+        };
+        if let Ok(w) = book.walls.binary_search_by_key(&(n as u32), |w| w.0) {
+            return book.walls[w].1;
+        }
+        let record = book.pushed.binary_search_by_key(&(n as u32), |r| r.index).ok();
+        c.applied(record.map(|r| &book.pushed[r].force))
+    }
+
+    /// The touching pairs of a wall at the last update, in key order: each one's index and
+    /// the force its law applied.
+    pub(crate) fn walls(&self) -> impl Iterator<Item = &(u32, AppliedForce)> + '_ {
+        self.chunks.iter().flat_map(|c| &c.book.walls)
+    }
 }
 
 /// Gives back a buffer's room when it is more than four times its contents (and more than
@@ -205,6 +245,7 @@ fn chunks_for(chunks: &mut Vec<ChunkOut>, candidates: usize) -> &mut [ChunkOut] 
         c.outcomes.clear();
         c.book.fresh.clear();
         c.book.pushed.clear();
+        c.book.walls.clear();
         c.book.sums = ChunkSums::default();
     }
     &mut chunks[..used]
@@ -221,6 +262,7 @@ impl PairScratch {
             self.fresh.extend_from_slice(&c.book.fresh);
             trim(&mut c.book.fresh);
             trim(&mut c.book.pushed);
+            trim(&mut c.book.walls);
             trim(&mut c.outcomes);
         }
         trim(&mut self.fresh);
@@ -275,7 +317,11 @@ fn general_step(
     step_pair(model, k, key, slot, block, dt, &mut o, &mut law);
     let elastic = law.elastic;
     book.record(n, &o, block.get(*slot), elastic);
-    (*slot != NO_CONTACT).then_some(o)
+    let touches = *slot != NO_CONTACT;
+    if touches && matches!(key.0, Feature::Wall(_)) {
+        book.walls.push((n as u32, o.applied));
+    }
+    touches.then_some(o)
 }
 
 impl NeighbourList {
@@ -343,6 +389,7 @@ impl NeighbourList {
                 }
             });
         let (report, total) = scratch.totals(used, ended_dissipation);
+        scratch.generation = self.generation();
         self.sums = Some((total.elastic, total.friction));
         report
     }
@@ -399,6 +446,7 @@ impl NeighbourList {
             n += 1;
         }
         let (report, total) = scratch.totals(used, ended_dissipation);
+        scratch.generation = self.generation();
         self.sums = Some((total.elastic, total.friction));
         report
     }
@@ -437,6 +485,14 @@ impl NeighbourList {
                 (n as usize, each)
             },
         )
+    }
+
+    /// What the last update in `scratch` gave besides the contacts' states, if it was of
+    /// these candidates ([`LastUpdate`]).
+    pub(crate) fn last_update<'a>(&self, scratch: &'a PairScratch) -> LastUpdate<'a> {
+        let used = self.keys.len().div_ceil(PAIR_CHUNK).min(scratch.chunks.len());
+        let current = scratch.generation == self.generation();
+        LastUpdate { chunks: if current { &scratch.chunks[..used] } else { &[] } }
     }
 
     /// The touching pairs' loads at the last parallel update ([`NeighbourList::update`]),

@@ -100,7 +100,7 @@ pub(crate) fn continuing_pair(
     let c = block.get_mut(slot)?;
     let (i, j) = (i as usize, j as usize);
     let g = sphere_geometry(p, i, j, &c.state.normal).filter(|g| g.overlap > 0.0)?;
-    Some(apply_law(c, &g, [i as u32, j as u32], [p.pos[i], p.pos[j]], dt, law))
+    Some(apply_law(c, &g, [i as u32, j as u32], [p.pos[i], p.pos[j]], dt, law).0)
 }
 
 /// One pair's step (see [`NeighbourList::update`]): `slot` is its index into `block`, the
@@ -143,12 +143,7 @@ pub(crate) fn step_pair(
             out.born_energy = birth_jump(&c.params, &c.state, &g, dt);
             out.born_deep = g.overlap - approach * dt > 1e-12 * reach;
             out.fresh = true;
-            let made = PairContact {
-                params: c.params,
-                state: c.state,
-                applied: AppliedForce::default(),
-                point: c.point,
-            };
+            let made = PairContact { params: c.params, state: c.state };
             *slot = block.insert(made);
         }
         (None, Some(c)) => {
@@ -183,15 +178,16 @@ pub(crate) fn step_pair(
             }
         };
         let nodes = [site1.nodes[0], site2.nodes[0]];
-        out.loads = apply_law(c, &g, nodes, [center1, center2], dt, law);
+        (out.loads, out.applied) = apply_law(c, &g, nodes, [center1, center2], dt, law);
     }
 }
 
 /// The contact law of a pair in contact, at geometry `g`, and the loads on its two bodies
 /// (`nodes`, with their `centers`): a particle's site takes the whole force, and its moment
-/// about the centre (`distribute_force` with the weight 1). Its elastic energy goes to `law`,
-/// and when its dashpots pushed, their force alone (−fd on body 1, fd on body 2) with its
-/// moments about the centres.
+/// about the centre (`distribute_force` with the weight 1); with the force applied (which a
+/// wall's pair keeps, `PairOutcome::applied`). Its elastic energy goes to `law`, and when its
+/// dashpots pushed, their force alone (−fd on body 1, fd on body 2) with its moments about
+/// the centres.
 #[inline(always)]
 fn apply_law(
     c: &mut PairContact,
@@ -200,7 +196,7 @@ fn apply_law(
     centers: [Vec3; 2],
     dt: Real,
     law: &mut LawOut<'_>,
-) -> [NodeLoad; 2] {
+) -> ([NodeLoad; 2], AppliedForce) {
     let f = update_frictional_contact(&c.params, &mut c.state, &law_kinematics(g), dt);
     let on_1 = -f.force_on_2;
     let loads = [
@@ -221,13 +217,12 @@ fn apply_law(
         record.moments = [(g.point - centers[0]).cross(&(-fd)), (g.point - centers[1]).cross(&fd)];
         record.viscous = f.dissipated.viscous;
     }
-    c.applied = AppliedForce {
+    let applied = AppliedForce {
         normal_force: f.normal_force,
         shear_force: f.shear_force,
         sliding: f.sliding,
     };
-    c.point = g.point;
-    loads
+    (loads, applied)
 }
 
 /// The geometry of touching free spheres `i` and `j` whose last normal was
@@ -277,12 +272,7 @@ mod tests {
             [(0.0, 0.0, 0.01), (0.0, 0.0, 50.0), (3.0, 2.0, 0.01), (3.0, 2.0, 50.0)]
         {
             let params = FrictionalParams { kn: 1e5, ks: 4e4, tan_phi: 0.4, cn, ct };
-            let mut c = PairContact {
-                params,
-                state: FrictionalContact::new(n),
-                applied: AppliedForce::default(),
-                point: Vec3::zeros(),
-            };
+            let mut c = PairContact { params, state: FrictionalContact::new(n) };
             c.state.shear_force = Vec3::new(0.0, 3.0, 0.0);
             let mut reference = c.state.clone();
             let g = ContactGeometry {
@@ -295,20 +285,10 @@ mod tests {
             let f = update_frictional_contact(&params, &mut reference, &law_kinematics(&g), 1e-4);
             let mut pushed = vec![];
             let mut law = LawOut::new(&mut pushed, 7);
-            apply_law(&mut c, &g, [0, 1], [Vec3::zeros(), n * 0.2], 1e-4, &mut law);
-            let made = c.forces();
+            let (_, kept) = apply_law(&mut c, &g, [0, 1], [Vec3::zeros(), n * 0.2], 1e-4, &mut law);
+            let elastic = law.elastic;
             let case = format!("cn {cn}, ct {ct}, slip {slip}");
             assert_eq!(c.state, reference, "{case}");
-            assert_eq!(made.normal_force, f.normal_force, "{case}");
-            assert_eq!(made.shear_force, f.shear_force, "{case}");
-            assert_eq!(made.force_on_2, f.force_on_2, "{case}");
-            assert_eq!(made.elastic_energy, f.elastic_energy, "{case}");
-            assert_eq!(made.sliding, f.sliding, "{case}");
-            assert_eq!(made.sliding, slip > 1.0, "{case}");
-            let scale = f.force_on_2.norm();
-            assert!((made.dashpot_force - f.dashpot_force).norm() <= 1e-14 * scale, "{case}");
-            let elastic = law.elastic;
-            assert_eq!(elastic, f.elastic_energy, "{case}");
             assert_eq!(f.dashpot_force == Vec3::zeros(), pushed.is_empty(), "{case}");
             if let [record] = pushed[..] {
                 assert_eq!(record.index, 7, "{case}");
@@ -316,6 +296,28 @@ mod tests {
                 assert_eq!(record.viscous, f.dissipated.viscous, "{case}");
             }
             assert_eq!(cn == 0.0, f.dashpot_force == Vec3::zeros(), "{case}");
+            assert_eq!(elastic, f.elastic_energy, "{case}");
+            // the force kept (a wall's pair), and the one made from the state and the
+            // dashpots' record (a sphere pair's)
+            let made = c.applied(pushed.first().map(|r| &r.force));
+            for (applied, exact) in [(kept, true), (made, cn == 0.0)] {
+                let forces = c.forces(&applied);
+                let scale = f.force_on_2.norm();
+                let near = |a: Vec3, b: Vec3| (a - b).norm() <= 1e-14 * scale;
+                if exact {
+                    assert_eq!(forces.normal_force, f.normal_force, "{case}");
+                    assert_eq!(forces.shear_force, f.shear_force, "{case}");
+                    assert_eq!(forces.force_on_2, f.force_on_2, "{case}");
+                } else {
+                    assert!((forces.normal_force - f.normal_force).abs() <= 1e-14 * scale);
+                    assert!(near(forces.shear_force, f.shear_force), "{case}");
+                    assert!(near(forces.force_on_2, f.force_on_2), "{case}");
+                }
+                assert!(near(forces.dashpot_force, f.dashpot_force), "{case}");
+                assert_eq!(forces.elastic_energy, f.elastic_energy, "{case}");
+                assert_eq!(forces.sliding, f.sliding, "{case}");
+                assert_eq!(forces.sliding, slip > 1.0, "{case}");
+            }
         }
     }
 }

@@ -25,6 +25,7 @@
 
 use crate::contact_list::Contacts;
 use crate::measures::{membrane_sample_volume, normal_force, wall_gap};
+use crate::pair_passes::LastUpdate;
 use crate::SimulationError;
 use flexdem_geom::{Real, Vec3};
 use serde::{Deserialize, Serialize};
@@ -242,13 +243,14 @@ pub(crate) struct WallLoads {
 }
 
 impl WallLoads {
-    /// Sums the force and the stiffness of the contacts on each of `walls` walls.
-    pub(crate) fn sum(&mut self, contacts: &Contacts, walls: usize) {
+    /// Sums the force and the stiffness of the contacts on each of `walls` walls (the free
+    /// spheres' as their last update, `last`, applied them).
+    pub(crate) fn sum(&mut self, contacts: &Contacts, last: &LastUpdate<'_>, walls: usize) {
         self.force.clear();
         self.force.resize(walls, Vec3::zeros());
         self.stiffness.clear();
         self.stiffness.resize(walls, 0.0);
-        contacts.for_each_on_wall(|w, force_on_2, normal_force, kn| {
+        contacts.for_each_on_wall(last, |w, force_on_2, normal_force, kn| {
             let w = w as usize;
             self.force[w] -= force_on_2;
             if normal_force > 0.0 {

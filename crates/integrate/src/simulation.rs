@@ -105,7 +105,8 @@ impl Simulation {
     /// (made for the caller: those of free spheres live in a neighbour list, see
     /// [`Contacts::pairs`](crate::Contacts)). For a count, [`Simulation::contact_count`].
     pub fn contacts(&self) -> Vec<Contact> {
-        self.state.contacts.all(&self.state.model)
+        let last = self.state.contacts.pairs.last_update(&self.pipeline.contacts.pairs);
+        self.state.contacts.all_after(&self.state.model, Some(&last))
     }
 
     /// Number of current contacts.

@@ -242,7 +242,8 @@ impl Simulation {
     /// work (timed with the integration, which moves the walls).
     fn wall_stage(&mut self, dt: Real) -> WallPower {
         let walls = self.state.model.walls.len();
-        self.pipeline.walls.sum(&self.state.contacts, walls);
+        let last = self.state.contacts.pairs.last_update(&self.pipeline.contacts.pairs);
+        self.pipeline.walls.sum(&self.state.contacts, &last, walls);
         let before = self.wall_power();
         let steered = steer_walls(
             &mut self.state.model,
@@ -306,7 +307,8 @@ impl Simulation {
             return 0.0;
         }
         let mut power = 0.0;
-        self.state.contacts.for_each_on_wall(|w, force_on_2, _, _| {
+        let last = self.state.contacts.pairs.last_update(&self.pipeline.contacts.pairs);
+        self.state.contacts.for_each_on_wall(&last, |w, force_on_2, _, _| {
             power += force_on_2.dot(&walls[w as usize].velocity);
         });
         power
@@ -427,7 +429,7 @@ impl Simulation {
                 value,
                 step: self.state.clock.steps,
                 time: self.state.clock.time,
-                culprit: describe(&self.state),
+                culprit: describe(&self.state, &self.pipeline.contacts.pairs),
             });
         }
         let Some(limit) = self.state.settings.energy_tolerance else { return Ok(()) };
@@ -453,7 +455,7 @@ impl Simulation {
                      count: {culprit}",
                     step = self.state.clock.steps,
                     time = self.state.clock.time,
-                    culprit = describe(&self.state)
+                    culprit = describe(&self.state, &self.pipeline.contacts.pairs)
                 ));
             }
             return Ok(());
@@ -465,7 +467,7 @@ impl Simulation {
             limit,
             change,
             scale,
-            culprit: describe(&self.state),
+            culprit: describe(&self.state, &self.pipeline.contacts.pairs),
         })
     }
 

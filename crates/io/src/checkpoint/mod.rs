@@ -36,7 +36,9 @@
 //! (`FrictionalContact::dissipated_friction`, where it kept a whole `Dissipation`);
 //! version 11 the links' plastic states apart (`Links::plastic`, a `LinkPlastic` per link
 //! when some material is plastic, none otherwise; a link state without them) and their
-//! springs shared (`Links::springs` once per distinct spring, `Links::spring` per link).
+//! springs shared (`Links::springs` once per distinct spring, `Links::spring` per link);
+//! version 12 the free spheres' lean contacts (`PairContact` without the contact point of
+//! its last update, made when asked from the positions).
 //! Files of older versions are refused with the version error, which says so.
 //!
 //! # Writing
@@ -78,7 +80,7 @@ use std::path::{Path, PathBuf};
 pub const CHECKPOINT_MAGIC: [u8; 8] = *b"FLXDMCKP";
 
 /// The format version this build writes and reads (see the module documentation).
-pub const CHECKPOINT_VERSION: u32 = 11;
+pub const CHECKPOINT_VERSION: u32 = 12;
 
 /// Size of the header before the payload: magic, version, length, checksum (bytes).
 pub const CHECKPOINT_HEADER_LEN: usize = 24;
