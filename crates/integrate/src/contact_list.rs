@@ -81,7 +81,12 @@ impl Contacts {
             .map(|pick| match pick {
                 Pick::General(n) => self.list[n].clone(),
                 Pick::Pair(n) => {
-                    self.pairs.contact(model, n, last).expect("merged yields touching pairs")
+                    let c = self.pairs.contact_at(n).expect("merged yields touching pairs");
+                    let applied = match last {
+                        Some(last) => last.applied(c, n),
+                        None => c.applied(None),
+                    };
+                    self.pairs.contact(model, n, &applied).expect("a touching pair")
                 }
             })
             .collect()

@@ -16,7 +16,6 @@
 use crate::contact::{geometry_of, Contact, SPHERE_OWNER, WALL_OWNER};
 pub use crate::pair_keys::ContactKey;
 use crate::pair_keys::PairKeys;
-use crate::pair_passes::LastUpdate;
 use crate::pair_store::{blocks_for, BlockContacts, BLOCK, NO_CONTACT};
 use flexdem_contact::{
     spring_energy, spring_energy_squared, ContactForces, FrictionalContact, FrictionalParams,
@@ -296,15 +295,15 @@ impl NeighbourList {
     }
 
     /// The pair at `index` (of the candidates) as a [`Contact`], if it touches: its forces
-    /// those of its last update (`last`, see [`LastUpdate`]: without it, a damped pair's are
-    /// its springs' alone), its point the contact point of the bodies where they are now
-    /// (`contact::geometry_of` with the normal of the last update: the point is not kept from
-    /// step to step, see [`PairContact`]).
+    /// made from `applied`, the force its last update applied (see
+    /// `pair_passes::LastUpdate`), its point the contact point of the bodies where they are
+    /// now (`contact::geometry_of` with the normal of the last update: the point is not kept
+    /// from step to step, see [`PairContact`]).
     pub(crate) fn contact(
         &self,
         model: &Model,
         index: usize,
-        last: Option<&LastUpdate<'_>>,
+        applied: &AppliedForce,
     ) -> Option<Contact> {
         let c = self.contact_at(index)?;
         let key = &self.keys.get(index);
@@ -312,17 +311,13 @@ impl NeighbourList {
         let p = &model.particles;
         let k = Kinematics { pos: &p.pos, vel: &p.vel, ang_vel: &p.ang_vel };
         let (_, _, g) = geometry_of(model, &k, &site1, &site2, &c.state.normal);
-        let applied = match last {
-            Some(last) => last.applied(c, index),
-            None => c.applied(None),
-        };
         Some(Contact {
             site1,
             site2,
             owners: owners(key),
             params: c.params,
             state: c.state.clone(),
-            forces: c.forces(&applied),
+            forces: c.forces(applied),
             point: g.point,
         })
     }
