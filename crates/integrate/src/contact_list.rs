@@ -67,10 +67,10 @@ impl Contacts {
     }
 
     /// Every contact, in key order, as a [`Contact`] (the free spheres' made from their
-    /// neighbour list): for output and inspection, not for the step. The free spheres'
-    /// forces are those of their last update given `last` (`Simulation::contacts` gives it);
-    /// without it a damped pair's force is its springs' alone (the dashpots' push is not part
-    /// of the state, see `NeighbourList::contact`).
+    /// neighbour list): for output and inspection, not for the step. From the state alone:
+    /// a free spheres' pair's force is its springs' (the law's exactly without dashpots; the
+    /// push of its dashpots at the last step is not part of the state, and
+    /// `Simulation::contacts`, which has that step's records, adds it).
     pub fn all(&self, model: &Model) -> Vec<Contact> {
         self.all_after(model, None)
     }
@@ -93,10 +93,11 @@ impl Contacts {
     }
 
     /// Calls `f(wall, force on the body, normal force, kn)` on every wall contact, in key
-    /// order (nothing made: the walls' loads are summed every step), the free spheres' as
-    /// their last update (`last`) applied them (none when it was of other candidates: the
-    /// forces are the law's, and a wall's pairs have not been updated since a load). The keys
-    /// sort walls last: only the general list's tail is looked at.
+    /// order (nothing made: the walls' loads are summed every step), the free spheres' with
+    /// the force their last update (`last`) applied, as their law gave it. A free sphere's
+    /// wall contact not updated since the candidates changed (a load, before its first step)
+    /// is left out, as if it pushed with no force. The keys sort walls last: only the general
+    /// list's tail is looked at.
     pub(crate) fn for_each_on_wall(
         &self,
         last: &LastUpdate<'_>,
