@@ -30,8 +30,8 @@ use serde::{Deserialize, Serialize};
 /// forces, [`PairContact::applied`] and [`PairContact::forces`]; its point,
 /// `NeighbourList::contact`): 112 bytes where a [`Contact`] is 320. The pairs' step reads
 /// and writes all of it and nothing else (it was 176 bytes with the force applied and the
-/// point written at every update for output alone: 40 % more memory to stream through per
-/// step; the LAMMPS twin's contact stage took 5–15 % longer with it).
+/// point written at every update for output alone: 57 % more memory to stream through per
+/// step; the LAMMPS twin's step took 3–10 % longer with it, bench/README's eighth session).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct PairContact {
     /// Stiffnesses, friction and dashpots.
@@ -67,8 +67,8 @@ impl PairContact {
     /// (`Fn = kn·δ`, and the shear spring, which the law sets to the capped force when it
     /// slides); with one, `Fn = kn·δ + fd·n` and `Fs = Fs,spring + fd − (fd·n)·n` (the law's
     /// to round-off; an `Fn` within the round-off of that sum of zero is the law's clamp of
-    /// Fn at zero, and is zero). Sliding: `|Fs|` at the Coulomb limit `tanφ·Fn`, to round-off (a limit of
-    /// zero counts as sliding).
+    /// Fn at zero, and is zero). Sliding: `|Fs|` at the Coulomb limit `tanφ·Fn`, to
+    /// round-off (a limit of zero counts as sliding).
     pub fn applied(&self, dashpot: Option<&Vec3>) -> AppliedForce {
         let s = &self.state;
         let (normal_force, shear_force) = match dashpot {
