@@ -488,11 +488,13 @@ pub fn run_sphere_on_net(ctx: &Context) -> Result<CaseReport, ValidationError> {
          ([`yade_force_splits`](#yade_force_splits)), so the contact law, the damping and the \
          integration agree step for step; the difference lies where the net moves (the links' \
          dynamics, node rotational inertia and damping, or the contact's shear kinematics on \
-         moving connections) and is not identified yet. The shear force locked in depends on \
-         round-off as well: builds whose shear transport rounds its magnitude restore otherwise \
-         (the same formula to the last bit or two, issue 14) locked in 0.28–0.32 N per contact \
-         (normal force 2.646 N) and, with a first-order restore, 0.49 N (2.690 N: a fail), where \
-         this build locks in the shear forces listed above."
+         moving connections) and is not identified yet. **This check's pass is not robust:** \
+         the shear locked in during the transient is chaotic. Starts of the sphere 1e-12 m \
+         higher or lower give a mean normal force of 2.679 or 2.758 N (fails), 1e-10 and 1e-9 m \
+         higher 2.721 and 2.597 N: over these five starts 2.597–2.758 N, median 2.679 N, 2.2 % \
+         above YADE's one run. Round-off moves it alike: builds whose shear transport rounds \
+         its magnitude restore otherwise (issue 14) gave 2.646 N (shear 0.28–0.32 N per \
+         contact) and 2.690 N (shear 0.49 N). YADE's own run is one sample of such a spread."
     );
     Ok(report)
 }
