@@ -57,7 +57,9 @@ pub enum LinkKinematicsMode {
     /// frame element (default).
     #[default]
     Beam,
-    /// YADE's kinematics: the tangential displacement scaled by α = 2r/L (softer in shear).
+    /// YADE's kinematics: the tangential displacement scaled by α = 2r/L (softer in shear),
+    /// and a virtual sphere on a connection turning with the axis at YADE's `s × (v1 − v0)`
+    /// where the rigid rate is `s × (v1 − v0)/L²` (`flexdem_elements::virtual_sphere`).
     Yade,
 }
 

@@ -8,6 +8,8 @@
 //! share the force (eq 17), so the power the contact force delivers to the virtual sphere is
 //! the power delivered to the nodes.
 
+use crate::Particles;
+use flexdem_contact::LinkKinematicsMode;
 use flexdem_geom::{Real, Vec3};
 use serde::{Deserialize, Serialize};
 
@@ -113,6 +115,27 @@ pub struct Kinematics<'a> {
     pub vel: &'a [Vec3],
     /// Angular velocities.
     pub ang_vel: &'a [Vec3],
+    /// How a virtual sphere on a connection turns with the connection's axis: `Beam`, the
+    /// rigid rotation rate `s × dv / L²`; `Yade`, YADE's `s × dv` (see [`virtual_sphere`]).
+    pub link_mode: LinkKinematicsMode,
+}
+
+impl<'a> Kinematics<'a> {
+    /// The kinematics of `particles`, virtual spheres on connections turning with their axis
+    /// at its rigid rotation rate (`Beam`).
+    pub fn of(particles: &'a Particles) -> Self {
+        Kinematics {
+            pos: &particles.pos,
+            vel: &particles.vel,
+            ang_vel: &particles.ang_vel,
+            link_mode: LinkKinematicsMode::Beam,
+        }
+    }
+
+    /// The same kinematics with virtual spheres on connections turning as `link_mode` says.
+    pub fn with_link_mode(self, link_mode: LinkKinematicsMode) -> Self {
+        Kinematics { link_mode, ..self }
+    }
 }
 
 /// The virtual sphere of a particle, edge or face site, from its nodes' state.
@@ -120,7 +143,11 @@ pub struct Kinematics<'a> {
 /// - particle: the particle itself;
 /// - edge at `t`, axis `s = x1 − x0`, `L = |s|` (paper §3): `P = (1 − t)x0 + t·x1`,
 ///   `v = (1 − t)v0 + t·v1`, `ω = [((1 − t)ω0 + tω1)·ŝ] ŝ + s × (v1 − v0)/L²` — the axial spin
-///   interpolated plus the rigid rotation rate of the axis (YADE omits the `1/L²`);
+///   interpolated plus the rigid rotation rate of the axis. YADE omits the `1/L²`
+///   (`Ig2_Sphere_GridConnection_ScGridCoGeom`, Grid.cpp): with `k.link_mode` `Yade` the
+///   rate is YADE's `s × (v1 − v0)`, which enters the shear velocity at the contact through
+///   `ω × (c − P)`; on a net of 0.1 m links its shear differs from the exact one from the
+///   first step of a contact on moving links (the validation's sphere on a net);
 /// - face at weights `w` (paper eq 16): `P = Σ wᵢxᵢ`, `v = Σ wᵢvᵢ`, `ω = Σ wᵢωᵢ`.
 ///
 /// For a rigid motion of the nodes (`vᵢ = V + Ω × xᵢ`, `ωᵢ = Ω`) this returns `V + Ω × P`
@@ -140,6 +167,7 @@ pub fn virtual_sphere(site: &Site, k: &Kinematics<'_>) -> VirtualSphere {
                 &(k.pos[i1] - k.pos[i0]),
                 &(k.vel[i1] - k.vel[i0]),
                 &(k.ang_vel[i0] * w0 + k.ang_vel[i1] * w1),
+                k.link_mode,
             );
             VirtualSphere { center, velocity, angular_velocity }
         }
@@ -166,14 +194,19 @@ pub fn virtual_sphere(site: &Site, k: &Kinematics<'_>) -> VirtualSphere {
 }
 
 /// Angular velocity of a virtual sphere on a segment with axis `s` whose ends move apart at
-/// `dv = v1 − v0`, given the interpolated node spin `spin`: `(spin·ŝ)ŝ + s × dv / |s|²`.
-/// A zero-length axis keeps the interpolated spin.
-fn edge_angular_velocity(s: &Vec3, dv: &Vec3, spin: &Vec3) -> Vec3 {
+/// `dv = v1 − v0`, given the interpolated node spin `spin`: `(spin·ŝ)ŝ + s × dv / |s|²`
+/// (`Beam`), or YADE's `(spin·ŝ)ŝ + s × dv` (`Yade`). A zero-length axis keeps the
+/// interpolated spin.
+fn edge_angular_velocity(s: &Vec3, dv: &Vec3, spin: &Vec3, mode: LinkKinematicsMode) -> Vec3 {
     let l2 = s.norm_squared();
     if !(l2 > Real::MIN_POSITIVE) {
         return *spin;
     }
-    s * (spin.dot(s) / l2) + s.cross(dv) / l2
+    let axial = s * (spin.dot(s) / l2);
+    match mode {
+        LinkKinematicsMode::Beam => axial + s.cross(dv) / l2,
+        LinkKinematicsMode::Yade => axial + s.cross(dv),
+    }
 }
 
 /// The geometry and kinematics of a contact between two (real or virtual) spheres.

@@ -69,7 +69,7 @@ fn contact_step(
     params: &FrictionalParams,
     state: &mut FrictionalContact,
 ) -> Vec3 {
-    let k = Kinematics { pos: &s.pos, vel: &s.vel, ang_vel: &s.ang };
+    let k = Kinematics { pos: &s.pos, vel: &s.vel, ang_vel: &s.ang, link_mode: Default::default() };
     let vs1 = virtual_sphere(&c.site1, &k);
     let vs2 = virtual_sphere(&c.site2, &k);
     let g = contact_geometry(&vs1, c.site1.radius, &vs2, c.site2.radius, &state.normal);

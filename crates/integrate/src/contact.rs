@@ -186,7 +186,7 @@ fn birth_normal(model: &Model, c: &Candidate) -> Vec3 {
         return d.normalize();
     }
     let p = &model.particles;
-    let k = Kinematics { pos: &p.pos, vel: &p.vel, ang_vel: &p.ang_vel };
+    let k = Kinematics::of(p);
     let v = virtual_sphere(&c.site2, &k).velocity - virtual_sphere(&c.site1, &k).velocity;
     let axis = |site: &Site| -> Vec3 {
         match site.feature {

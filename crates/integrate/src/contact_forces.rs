@@ -47,7 +47,7 @@ impl ContactPipeline {
             zero(force);
             zero(torque);
         }
-        let k = Kinematics { pos: &p.pos, vel: &p.vel, ang_vel: &p.ang_vel };
+        let k = Kinematics::of(p).with_link_mode(self.link_mode);
         let zero = [NodeLoad { node: 0, force: Vec3::zeros(), torque: Vec3::zeros() }; 6];
         self.loads.resize(contacts.list.len(), zero);
         self.load_nodes.resize(contacts.list.len(), [NO_NODE; 6]);

@@ -19,7 +19,7 @@ use crate::parallel::MAX_CHUNKS_PER_TASK;
 use crate::parallel::{MIN_PARALLEL_CHEAP, MIN_PARALLEL_COSTLY};
 use crate::prefilter::{proven_apart, write_hull, Hull};
 use crate::touchings::Touchings;
-use flexdem_contact::ContactDamping;
+use flexdem_contact::{ContactDamping, LinkKinematicsMode};
 use flexdem_elements::pairs::{self, Candidate, ConnectionRef, PFacetRef, SphereRef};
 use flexdem_elements::touching::{dominates, Element, ElementCandidate, Topology};
 use flexdem_elements::virtual_sphere::{Feature, Kinematics, NodeLoad};
@@ -49,6 +49,9 @@ pub(crate) struct ContactPipeline {
     pub(crate) load_nodes: Vec<[u32; 6]>,
     /// Where each particle's loads are, for their parallel sum (`gather.rs`).
     pub(crate) load_index: LoadIndex,
+    /// The links' kinematics, which say how a virtual sphere on a connection turns
+    /// (`Kinematics::link_mode`).
+    pub(crate) link_mode: LinkKinematicsMode,
 }
 
 /// Candidate pairs per parallel task of the detection (fixed, the order of the touchings does
@@ -194,9 +197,11 @@ fn containing<'a>(
 }
 
 impl ContactPipeline {
-    /// Empty buffers for the contacts of `model` (`contacts` the ones it starts with).
-    pub(crate) fn new(model: &Model, contacts: &Contacts) -> Self {
+    /// Empty buffers for the contacts of `model` (`contacts` the ones it starts with), whose
+    /// links have the kinematics `link_mode`.
+    pub(crate) fn new(model: &Model, contacts: &Contacts, link_mode: LinkKinematicsMode) -> Self {
         ContactPipeline {
+            link_mode,
             damped: model.materials.iter().any(|m| m.damping != ContactDamping::None)
                 || contacts.list.iter().any(|c| c.params.is_damped())
                 || contacts.pairs.touching().any(|(_, c)| c.params.is_damped()),
@@ -440,7 +445,7 @@ impl ContactPipeline {
     /// exit and the new one's entry, which cancel to first order.
     fn settle_births(&mut self, contacts: &mut Contacts, model: &Model, dt: Real) -> BirthReport {
         let p = &model.particles;
-        let k = Kinematics { pos: &p.pos, vel: &p.vel, ang_vel: &p.ang_vel };
+        let k = Kinematics::of(p).with_link_mode(self.link_mode);
         let scratch = &mut self.scratch;
         let old = &scratch.previous;
         let taken = &mut scratch.taken;

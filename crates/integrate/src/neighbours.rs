@@ -309,7 +309,7 @@ impl NeighbourList {
         let key = &self.keys.get(index);
         let (site1, site2) = sites(model, key);
         let p = &model.particles;
-        let k = Kinematics { pos: &p.pos, vel: &p.vel, ang_vel: &p.ang_vel };
+        let k = Kinematics::of(p);
         let (_, _, g) = geometry_of(model, &k, &site1, &site2, &c.state.normal);
         Some(Contact {
             site1,

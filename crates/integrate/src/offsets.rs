@@ -7,6 +7,7 @@
 //! ended contact's overlap is continued ([`continued_overlap`]).
 
 use crate::contact::{birth_jump, geometry, Contact};
+use flexdem_contact::LinkKinematicsMode;
 use flexdem_elements::virtual_sphere::{ContactGeometry, Feature, Kinematics};
 use flexdem_elements::Model;
 use flexdem_geom::Real;
@@ -44,10 +45,11 @@ pub(crate) fn release_offsets(
     contacts: &mut [Contact],
     fresh: &[usize],
     model: &Model,
+    link_mode: LinkKinematicsMode,
     dt: Real,
 ) -> Real {
     let p = &model.particles;
-    let k = Kinematics { pos: &p.pos, vel: &p.vel, ang_vel: &p.ang_vel };
+    let k = Kinematics::of(p).with_link_mode(link_mode);
     let mut booked = 0.0;
     let mut fresh = fresh.iter().peekable();
     for (n, c) in contacts.iter_mut().enumerate() {
@@ -157,7 +159,7 @@ mod tests {
         let mut booked = 0.0;
         let steps = 300;
         for _ in 0..steps {
-            booked += release_offsets(&mut list, &[], &model, 1e-6);
+            booked += release_offsets(&mut list, &[], &model, LinkKinematicsMode::Beam, 1e-6);
             // what the law does with it
             let c = &mut list[0];
             c.state.normal_force = kn * (delta - c.state.overlap_offset);
@@ -176,13 +178,13 @@ mod tests {
         let (model, mut c) = pressed_pair(1e-3);
         c.state.overlap_offset = 0.8e-3;
         let mut list = vec![c.clone()];
-        assert_eq!(release_offsets(&mut list, &[0], &model, 1e-6), 0.0);
+        assert_eq!(release_offsets(&mut list, &[0], &model, LinkKinematicsMode::Beam, 1e-6), 0.0);
         assert_eq!(list[0].state.overlap_offset, 0.8e-3);
         // deeper than the overlap: no force before, none after, nothing booked
         c.state.overlap_offset = 1.5e-3;
         c.state.normal_force = 0.0;
         let mut list = vec![c];
-        assert_eq!(release_offsets(&mut list, &[], &model, 1e-6), 0.0);
+        assert_eq!(release_offsets(&mut list, &[], &model, LinkKinematicsMode::Beam, 1e-6), 0.0);
         assert!((list[0].state.overlap_offset - 1e-3).abs() < 1e-15);
     }
 }

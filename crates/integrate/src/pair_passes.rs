@@ -341,7 +341,7 @@ impl NeighbourList {
         ended_dissipation: &mut Real,
     ) -> BirthReport {
         let p = &model.particles;
-        let k = Kinematics { pos: &p.pos, vel: &p.vel, ang_vel: &p.ang_vel };
+        let k = Kinematics::of(p);
         let used = self.keys.len().div_ceil(PAIR_CHUNK);
         scratch.position.resize(self.keys.len(), 0);
         let chunks = chunks_for(&mut scratch.chunks, self.keys.len());
@@ -407,7 +407,7 @@ impl NeighbourList {
         mut sink: impl FnMut(Sink<'_>),
     ) -> BirthReport {
         let p = &model.particles;
-        let k = Kinematics { pos: &p.pos, vel: &p.vel, ang_vel: &p.ang_vel };
+        let k = Kinematics::of(p);
         let used = self.keys.len().div_ceil(PAIR_CHUNK);
         let chunks = chunks_for(&mut scratch.chunks, self.keys.len());
         self.blocks.iter_mut().zip(self.slots.chunks_mut(BLOCK)).for_each(|(b, s)| b.tidy(s));

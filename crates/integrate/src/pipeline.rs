@@ -52,7 +52,7 @@ impl Pipeline {
         Pipeline {
             collider: Collider::new(&state.model, state.settings.verlet_factor),
             adjacency: state.model.contact_adjacency(),
-            contacts: ContactPipeline::new(&state.model, &state.contacts),
+            contacts: ContactPipeline::new(&state.model, &state.contacts, state.settings.link_mode),
             force: vec![Vec3::zeros(); n],
             torque: vec![Vec3::zeros(); n],
             external_force: Vec::new(),

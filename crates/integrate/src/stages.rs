@@ -156,6 +156,7 @@ impl Simulation {
             &mut self.state.contacts.list,
             &self.pipeline.contacts.fresh,
             &self.state.model,
+            self.state.settings.link_mode,
             dt,
         );
         let pairs = self.pipeline.contacts.apply(

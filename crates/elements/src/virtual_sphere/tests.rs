@@ -40,7 +40,7 @@ proptest! {
         origin in v3(),
     ) {
         let zeros = [Vec3::zeros(); 4];
-        let k = Kinematics { pos: &pos, vel: &zeros, ang_vel: &zeros };
+        let k = Kinematics { pos: &pos, vel: &zeros, ang_vel: &zeros, link_mode: LinkKinematicsMode::Beam };
         let vs = virtual_sphere(&site, &k);
         let loads = distribute_force(&site, &pos, &vs.center, &point, &force);
         let mut f = Vec3::zeros();
@@ -66,7 +66,7 @@ proptest! {
         point in v3(),
         force in v3(),
     ) {
-        let k = Kinematics { pos: &pos, vel: &vel, ang_vel: &ang };
+        let k = Kinematics { pos: &pos, vel: &vel, ang_vel: &ang, link_mode: LinkKinematicsMode::Beam };
         let vs = virtual_sphere(&site, &k);
         prop_assume!(site.node_count() < 2 || (pos[site.nodes[1] as usize] - pos[site.nodes[0] as usize]).norm() > 1e-3);
         let loads = distribute_force(&site, &pos, &vs.center, &point, &force);
@@ -89,7 +89,7 @@ proptest! {
         omega in v3(),
     ) {
         let (vel, ang) = rigid_motion(&pos, &v, &omega);
-        let k = Kinematics { pos: &pos, vel: &vel, ang_vel: &ang };
+        let k = Kinematics { pos: &pos, vel: &vel, ang_vel: &ang, link_mode: LinkKinematicsMode::Beam };
         let vs = virtual_sphere(&site, &k);
         let expected = v + omega.cross(&vs.center);
         let scale = v.norm() + omega.norm() * 4.0 + 1e-12;
@@ -125,10 +125,19 @@ fn edge_spin_includes_one_over_length_squared() {
     let vel = [Vec3::zeros(), Vec3::new(0.0, 0.0, 1.0)];
     let ang = [Vec3::zeros(); 2];
     let site = Site::edge(0, [0, 1], 0.5, 0.1);
-    let vs = virtual_sphere(&site, &Kinematics { pos: &pos, vel: &vel, ang_vel: &ang });
+    let vs = virtual_sphere(
+        &site,
+        &Kinematics { pos: &pos, vel: &vel, ang_vel: &ang, link_mode: LinkKinematicsMode::Beam },
+    );
     // ... so the rate is s × dv / L² = (2,0,0) × (0,0,1) / 4 = (0,-0.5,0) (YADE: (0,-2,0)).
     assert!((vs.angular_velocity - Vec3::new(0.0, -0.5, 0.0)).norm() < 1e-15);
     assert!((vs.velocity - Vec3::new(0.0, 0.0, 0.5)).norm() < 1e-15);
+    // with YADE's kinematics the rate is YADE's s × dv, the spin about the axis unchanged
+    let ang = [Vec3::new(3.0, 0.0, 0.0), Vec3::new(1.0, 0.0, 0.0)];
+    let k = Kinematics { pos: &pos, vel: &vel, ang_vel: &ang, link_mode: LinkKinematicsMode::Beam };
+    let yade = virtual_sphere(&site, &k.with_link_mode(LinkKinematicsMode::Yade));
+    assert!((yade.angular_velocity - Vec3::new(2.0, -2.0, 0.0)).norm() < 1e-15);
+    assert_eq!(yade.velocity, vs.velocity);
 }
 
 #[test]
@@ -174,7 +183,7 @@ fn zero_length_edge_keeps_interpolated_spin() {
     let ang = [Vec3::z(), Vec3::z()];
     let vs = virtual_sphere(
         &Site::edge(0, [0, 1], 0.3, 0.1),
-        &Kinematics { pos: &pos, vel: &vel, ang_vel: &ang },
+        &Kinematics { pos: &pos, vel: &vel, ang_vel: &ang, link_mode: LinkKinematicsMode::Beam },
     );
     assert_eq!(vs.angular_velocity, Vec3::z());
 }
@@ -192,7 +201,7 @@ fn crossed_connections(pos: &[Vec3; 4], n0: &Vec3) -> (Real, [Vec3; 4]) {
     };
     let c = connection_connection(&conn(0, 0), &conn(1, 2));
     let vel = [Vec3::zeros(); 4];
-    let k = Kinematics { pos, vel: &vel, ang_vel: &vel };
+    let k = Kinematics { pos, vel: &vel, ang_vel: &vel, link_mode: LinkKinematicsMode::Beam };
     let (s1, s2) = (virtual_sphere(&c.site1, &k), virtual_sphere(&c.site2, &k));
     let g = contact_geometry_crossing(&s1, 0.1, &s2, 0.1, n0, || {
         crossing_normal(&c.site1, &c.site2, pos, n0)
