@@ -8,6 +8,7 @@ pub mod structural;
 pub mod triaxial;
 pub mod yade_force_splits;
 pub mod yade_side_by_side;
+pub mod yade_sphere_on_net;
 
 use crate::report::{CaseReport, Context};
 use crate::ValidationError;
@@ -45,7 +46,7 @@ pub fn cases() -> Vec<Case> {
             id: "yade_sphere_on_net",
             title: "Sphere on a net against YADE 2023.02a",
             in_quick_subset: false,
-            run: yade_side_by_side::run_sphere_on_net,
+            run: yade_sphere_on_net::run_sphere_on_net,
         },
         Case {
             id: "yade_force_splits",

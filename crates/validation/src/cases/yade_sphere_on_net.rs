@@ -1,0 +1,440 @@
+//! `yade_sphere_on_net`: a sphere dropped on a net pinned at its corners, against YADE
+//! 2023.02a (`validation/yade/sphere_on_net/`): the rest state of the reference run, and the
+//! contact forces over an ensemble of starts.
+//!
+//! How a contact's force splits into normal and shear parts at rest is not set by the statics:
+//! friction locks shear in during the bouncing transient, and which shear is chaotic in both
+//! codes (a start 1e-10 m higher changes it). One run is one sample of it, so the forces are
+//! compared as means over the same 16 starts in both codes (YADE's
+//! `sphere_on_net_ensemble.py`).
+
+use super::yade_side_by_side::{json_number, read_csv_columns, read_json, yade_data_dir};
+use crate::plot::{plot_xy, Curve, CurveStyle, PlotSpec};
+use crate::report::{CaseReport, Check, Context, Figure};
+use crate::rest::max_speed;
+use crate::ValidationError;
+use flexdem_contact::{LinkKinematicsMode, Material};
+use flexdem_elements::builders::{net, GridLayout, StructureOptions};
+use flexdem_elements::{Dofs, Model};
+use flexdem_geom::{Real, Vec3};
+use flexdem_integrate::{Settings, Simulation, TimeStep};
+use rayon::prelude::*;
+use serde_json::Value;
+use std::f64::consts::PI;
+
+/// Net of the YADE scene: cells, spacing (m), link radius (m).
+const NET_CELLS: usize = 6;
+const NET_SPACING: Real = 0.1;
+const NET_RADIUS: Real = 0.005;
+/// Sphere radius (m) and mass (kg).
+const SPHERE_RADIUS: Real = 0.1;
+const SPHERE_MASS: Real = 1.0;
+/// The ensemble's starts: the sphere `k·ENSEMBLE_SHIFT` higher for `k` in `ENSEMBLE_KS`, as
+/// in `sphere_on_net_ensemble.py` (`k = 0` is the reference run).
+const ENSEMBLE_SHIFT: Real = 1e-10;
+const ENSEMBLE_KS: std::ops::RangeInclusive<i32> = -7..=8;
+
+/// One run of the scene until at rest, with its heights every 1000 steps.
+struct NetRun {
+    sim: Simulation,
+    sphere: usize,
+    centre: usize,
+    grid: GridLayout,
+    /// The sphere's starting height (m).
+    z0: Real,
+    steps: u64,
+    /// (time, sphere height), (time, contacts), (time, centre node height), every 1000 steps.
+    history: Vec<(Real, Real)>,
+    contact_history: Vec<(Real, Real)>,
+    centre_history: Vec<(Real, Real)>,
+}
+
+/// The scene of `sphere_on_net.py` with the sphere `shift` higher, run with step `dt` until
+/// every speed stays below 1e-9 m/s at 10 outputs 1000 steps apart, or `max_steps`.
+fn run_net(dt: Real, max_steps: u64, shift: Real) -> Result<NetRun, ValidationError> {
+    let phi = 30f64.to_radians();
+    let mut model = Model::new();
+    let net_mat = model.add_material(Material::new(1e8, 0.3, 1000.0, phi)?)?;
+    let size = NET_SPACING * NET_CELLS as Real;
+    let opts = StructureOptions::new("net", NET_RADIUS, net_mat);
+    let s = net(
+        &mut model,
+        Vec3::zeros(),
+        Vec3::x(),
+        Vec3::y(),
+        size,
+        size,
+        NET_CELLS,
+        NET_CELLS,
+        false,
+        &opts,
+    )?;
+    let grid = GridLayout::of(&model, s, NET_CELLS, NET_CELLS)?;
+    model.block(grid.corners(), Dofs::TRANSLATION)?;
+    let sphere_density = SPHERE_MASS / (4.0 / 3.0 * PI * SPHERE_RADIUS.powi(3));
+    let sphere_mat = model.add_material(Material::new(1e8, 0.3, sphere_density, phi)?)?;
+    let half = NET_CELLS / 2;
+    let centre_xy = NET_SPACING * half as Real;
+    let z0 = SPHERE_RADIUS + NET_RADIUS + shift;
+    let sphere =
+        model.add_sphere(Vec3::new(centre_xy, centre_xy, z0), SPHERE_RADIUS, sphere_mat)? as usize;
+    let centre = grid.node(half, half) as usize;
+    let settings = Settings {
+        time_step: TimeStep::Fixed(dt),
+        gravity: Vec3::new(0.0, 0.0, -10.0),
+        damping: 0.3,
+        link_mode: LinkKinematicsMode::Yade,
+        ..Settings::default()
+    };
+    let mut sim = Simulation::new(model, settings)?;
+    let at = |sim: &Simulation, i: usize| sim.model().particles.pos[i].z;
+    let mut history = vec![(0.0, at(&sim, sphere))];
+    let mut contact_history = vec![(0.0, sim.contacts().len() as Real)];
+    let mut centre_history = vec![(0.0, at(&sim, centre))];
+    let (mut steps, mut quiet_chunks) = (0, 0);
+    while steps < max_steps && quiet_chunks < 10 {
+        sim.run(1000)?;
+        steps += 1000;
+        history.push((sim.time(), at(&sim, sphere)));
+        contact_history.push((sim.time(), sim.contacts().len() as Real));
+        centre_history.push((sim.time(), at(&sim, centre)));
+        quiet_chunks = if max_speed(&sim) <= 1e-9 { quiet_chunks + 1 } else { 0 };
+    }
+    Ok(NetRun { sim, sphere, centre, grid, z0, steps, history, contact_history, centre_history })
+}
+
+/// What the contacts carrying load hold at rest, and the run's lowest sphere height.
+#[derive(Clone, Copy, Debug)]
+struct RestForces {
+    /// Mean normal force (N).
+    normal: Real,
+    /// Mean shear force (N).
+    shear: Real,
+    /// Contacts carrying load.
+    count: usize,
+    /// The sphere's lowest height at the outputs every 1000 steps (m).
+    lowest: Real,
+}
+
+fn rest_forces(run: &NetRun) -> RestForces {
+    let touching: Vec<_> =
+        run.sim.contacts().into_iter().filter(|c| c.forces.normal_force > 0.0).collect();
+    let n = touching.len().max(1) as Real;
+    RestForces {
+        normal: touching.iter().map(|c| c.forces.normal_force).sum::<Real>() / n,
+        shear: touching.iter().map(|c| c.forces.shear_force.norm()).sum::<Real>() / n,
+        count: touching.len(),
+        lowest: run.history.iter().map(|h| h.1).fold(Real::INFINITY, Real::min),
+    }
+}
+
+/// Mean, smallest and largest of `x`.
+fn spread(x: &[Real]) -> (Real, Real, Real) {
+    let mean = x.iter().sum::<Real>() / x.len().max(1) as Real;
+    (
+        mean,
+        x.iter().copied().fold(Real::INFINITY, Real::min),
+        x.iter().copied().fold(Real::NEG_INFINITY, Real::max),
+    )
+}
+
+/// The sphere on a net against YADE.
+pub fn run_sphere_on_net(ctx: &Context) -> Result<CaseReport, ValidationError> {
+    let dir = yade_data_dir().join("sphere_on_net");
+    let summary_path = dir.join("sphere_on_net_summary.json");
+    let summary = read_json(&summary_path)?;
+    let number = |pointer: &str| json_number(&summary, pointer, &summary_path);
+    let yade_sphere_z = number("/final/sphere_pos_final/2")?;
+    let yade_centre_z = number("/final/centre_node_pos_final/2")?;
+    let contacts = summary.pointer("/final/active_contacts_final").and_then(Value::as_array);
+    let yade_fn: Vec<Real> = contacts
+        .map(|list| list.iter().filter_map(|c| c.get("fn").and_then(Value::as_f64)).collect())
+        .unwrap_or_default();
+    if yade_fn.is_empty() {
+        return Err(ValidationError::Data {
+            path: summary_path,
+            message: "no contact normal forces at /final/active_contacts_final".into(),
+        });
+    }
+    let yade_nodes =
+        read_csv_columns(&dir.join("sphere_on_net_final_nodes.csv"), &["i", "j", "x", "y", "z"])?;
+    let ensemble_path = dir.join("sphere_on_net_ensemble.csv");
+    let yade_ensemble = read_csv_columns(
+        &ensemble_path,
+        &["k", "fn_mean", "fs_mean", "min_sphere_z_history", "n_active"],
+    )?;
+    let yade_ks: Vec<i32> = yade_ensemble.iter().map(|r| r[0] as i32).collect();
+    if yade_ks != ENSEMBLE_KS.collect::<Vec<_>>() {
+        return Err(ValidationError::Data {
+            path: ensemble_path,
+            message: format!("starts k = {yade_ks:?}, expected {ENSEMBLE_KS:?}"),
+        });
+    }
+    let dt = number("/dt")?;
+    let max_steps = number("/final/steps")? as u64;
+
+    // the reference start (k = 0) with its histories, then the others
+    let runs: Vec<Result<NetRun, ValidationError>> = ENSEMBLE_KS
+        .collect::<Vec<_>>()
+        .into_par_iter()
+        .map(|k| run_net(dt, max_steps, k as Real * ENSEMBLE_SHIFT))
+        .collect();
+    let runs = runs.into_iter().collect::<Result<Vec<_>, _>>()?;
+    let forces: Vec<RestForces> = runs.iter().map(rest_forces).collect();
+    let reference = (0 - ENSEMBLE_KS.start()) as usize;
+    let run = &runs[reference];
+    let rest = forces[reference];
+    let (sim, sphere, centre, grid) = (&run.sim, run.sphere, run.centre, &run.grid);
+    let p = &sim.model().particles;
+    let sphere_z = p.pos[sphere].z;
+    let centre_z = p.pos[centre].z;
+    let node_difference = yade_nodes
+        .iter()
+        .map(|row| {
+            let q = p.pos[grid.node(row[0] as usize, row[1] as usize) as usize];
+            (q - Vec3::new(row[2], row[3], row[4])).norm()
+        })
+        .fold(0.0, Real::max);
+    let column = |rows: &[Vec<Real>], i: usize| rows.iter().map(|r| r[i]).collect::<Vec<_>>();
+    let (yade_fn_ens, yade_fs_ens, yade_low_ens) =
+        (column(&yade_ensemble, 1), column(&yade_ensemble, 2), column(&yade_ensemble, 3));
+    let ours = |f: fn(&RestForces) -> Real| forces.iter().map(f).collect::<Vec<_>>();
+    let (fn_ens, fs_ens, low_ens) = (ours(|f| f.normal), ours(|f| f.shear), ours(|f| f.lowest));
+
+    let mut report = CaseReport::new("yade_sphere_on_net", "Sphere on a net against YADE 2023.02a");
+    report.setup = format!(
+        "The scene of `validation/yade/sphere_on_net/sphere_on_net.py` rebuilt in flexdem: a net of \
+         {NET_CELLS} × {NET_CELLS} cells of {NET_SPACING} m (49 nodes, 84 links, r = {NET_RADIUS} m, \
+         E = 1e8 Pa, ν = 0.3, ρ = 1000 kg/m³, friction 30°), flat at z = 0, the 4 corners pinned \
+         (translations blocked, rotations free); a sphere r = {SPHERE_RADIUS} m of mass {SPHERE_MASS} \
+         kg (E = 1e8 Pa, friction 30°) starting at rest touching the centre node from above; \
+         g = 10 m/s², Cundall damping 0.3, dt = {dt:e} s as in YADE, `yade` link kinematics (YADE's \
+         links and YADE's spin of a virtual sphere on a moving link), contact \
+         kn = 2·E·r_s·E·r_c/(E·r_s + E·r_c), ks = 0.3·kn (eq 3–4, as YADE's FrictPhys). Run until \
+         every speed stays below 1e-9 m/s at 10 successive outputs 1000 steps apart ({} steps; \
+         YADE ran {max_steps}). The ensemble: the same run from {} starts k·{ENSEMBLE_SHIFT:e} m \
+         higher, k = {}..{} (YADE: `sphere_on_net_ensemble.py`, the same starts).",
+        run.steps,
+        forces.len(),
+        ENSEMBLE_KS.start(),
+        ENSEMBLE_KS.end(),
+    );
+    report.checks.push(Check::relative(
+        "sphere drop z0 − z",
+        "m",
+        run.z0 - yade_sphere_z,
+        run.z0 - sphere_z,
+        0.01,
+        "YADE 2023.02a",
+    ));
+    report.checks.push(Check::relative(
+        "centre node height",
+        "m",
+        yade_centre_z,
+        centre_z,
+        0.01,
+        "YADE 2023.02a",
+    ));
+    report.checks.push(Check::relative(
+        "mean contact normal force, mean over the starts",
+        "N",
+        spread(&yade_fn_ens).0,
+        spread(&fn_ens).0,
+        0.02,
+        "YADE 2023.02a, the same starts",
+    ));
+    report.checks.push(Check::relative(
+        "lowest sphere height at the outputs, mean over the starts",
+        "m",
+        spread(&yade_low_ens).0,
+        spread(&low_ens).0,
+        0.05,
+        "YADE 2023.02a, the same starts",
+    ));
+    report.checks.push(Check::absolute(
+        "number of contacts carrying load",
+        "",
+        yade_fn.len() as Real,
+        rest.count as Real,
+        0.0,
+        "YADE 2023.02a",
+    ));
+    let range = |x: &[Real], digits: usize| {
+        let (mean, lo, hi) = spread(x);
+        format!("mean {mean:.digits$}, {lo:.digits$} to {hi:.digits$}")
+    };
+    report.inform(
+        "mean contact normal force over the starts (N)",
+        format!("flexdem {}; YADE {}", range(&fn_ens, 4), range(&yade_fn_ens, 4)),
+    );
+    report.inform(
+        "mean contact shear force over the starts (N)",
+        format!("flexdem {}; YADE {}", range(&fs_ens, 4), range(&yade_fs_ens, 4)),
+    );
+    report.inform(
+        "lowest sphere height at the outputs over the starts (m)",
+        format!("flexdem {}; YADE {}", range(&low_ens, 5), range(&yade_low_ens, 5)),
+    );
+    report.inform(
+        "reference start: mean contact normal force",
+        format!("flexdem {:.5} N, YADE {:.5} N", rest.normal, spread(&yade_fn).0),
+    );
+    let support: Real = sim.contacts().iter().map(|c| c.forces.force_on_2.z.abs()).sum();
+    report.inform("vertical contact force on the sphere (weight 10 N)", format!("{support:.6} N"));
+    let centre_pos = p.pos[centre];
+    for c in sim.contacts().iter().filter(|c| c.forces.normal_force > 0.0) {
+        let f = c.forces.force_on_2;
+        let normal_dir = (f - c.forces.shear_force).normalize();
+        report.inform(
+            "flexdem contact: distance from centre node, normal tilt, |Fs|, Fs_z",
+            format!(
+                "{:.5} m, {:.2}°, {:.4} N, {:.4} N",
+                (c.point - centre_pos).norm(),
+                normal_dir.z.abs().acos().to_degrees(),
+                c.forces.shear_force.norm(),
+                c.forces.shear_force.z
+            ),
+        );
+    }
+    report.inform("largest node position difference from YADE", format!("{node_difference:.3e} m"));
+    plot_rest_shape(ctx, &mut report, run, &yade_nodes)?;
+    plot_history(ctx, &mut report, run, &dir)?;
+    let first_contact = |h: &[(Real, Real)]| {
+        h.iter().find(|c| c.1 > 0.0).map_or("never".to_string(), |c| format!("{:.2} s", c.0))
+    };
+    let yade_history = read_csv_columns(
+        &dir.join("sphere_on_net_history.csv"),
+        &["time", "sphere_z", "n_contacts", "centre_node_z"],
+    )?;
+    let yade_contacts: Vec<(Real, Real)> = yade_history.iter().map(|r| (r[0], r[2])).collect();
+    report.inform(
+        "reference start: first output with a contact (every 1000 steps)",
+        format!(
+            "flexdem {}, YADE {}",
+            first_contact(&run.contact_history),
+            first_contact(&yade_contacts)
+        ),
+    );
+    report.inform(
+        "reference start: lowest sphere height at the outputs",
+        format!(
+            "flexdem {:.5} m, YADE {:.5} m",
+            rest.lowest,
+            number("/final/min_sphere_z_history")?
+        ),
+    );
+    report.notes =
+        "Tolerances: the rest state is set by the links' stiffness under the same total \
+        load (weight of sphere and net), identical in both codes with the yade kinematics, and by \
+        how each contact's force splits into normal and shear parts. The heights are checked to \
+        1%. The split is not set by the statics: friction locks shear in while the sphere bounces \
+        on the net, and which shear is chaotic in both codes — over 16 starts 1e-10 m apart YADE's \
+        mean normal force per contact ranges as shown above (its reference run is one of them). \
+        So the normal force is checked as the mean over the same 16 starts in both codes, to 2% \
+        (YADE's ensemble has a spread of about 2% about its mean, so the mean of 16 is known to \
+        about 0.5%), and the first dip as the mean of the lowest heights at the outputs, to 5% \
+        (outputs every 1000 steps sample a bounce of some 2000 steps). **The transient is YADE's \
+        with YADE's spin of a virtual sphere on a link:** YADE spins it with the link's axis at \
+        s × (v₂ − v₁) where the rigid rotation rate is s × (v₂ − v₁)/L² (docs/model.md, virtual \
+        spheres), and that spin moves the contact point's velocity by r_c·|Δv|/L. On this net of \
+        0.1 m links it changes the shear from the first step of contact on the moving net: with \
+        the exact spin the first contact's shear force is 0.773 N against YADE's 0.672 (normal \
+        forces 29.35 and 29.39 N), with YADE's 0.671 N; over the whole drop the exact spin gave \
+        a first dip to −0.0217 m against YADE's −0.0100 m (outputs every 1000 steps). The `yade` \
+        link kinematics therefore use YADE's spin too; the default `beam` kinematics keep the \
+        exact one. Before the first contact the nets' heights differ by 1e-17 m after 200 steps \
+        and 1e-8 m after 3 000 (round-off, grown by the Cundall damping's switches of sign), the \
+        first bounce's forces by 0.1%, and the second bounce starts a fraction of a step apart: \
+        the ensemble, not step-by-step agreement, is the test past the first bounces. **Why the \
+        normal force check fails:** over the same starts flexdem locks in about twice YADE's \
+        shear (the mean shear forces above), so with the same contact geometry (positions and \
+        normal tilt) the normal force must be larger to carry the same weight; the vertical \
+        balance closes in both. The first dips agree (their mean to 0.5%), so the difference \
+        builds up while the sphere settles. Ruled out (2026-12-04, scratch builds, mean shear \
+        over the 16 starts): YADE's first-order shear transport F − F×(n₀×n) − F×(twist) \
+        instead of the exact one (0.58 N against 0.56), YADE's non-ratcheting relative \
+        velocity α(v₂ − v₁) − r₂ω₂×n − r₁ω₁×n instead of the contact point's (0.49 N), both \
+        (0.52 N); YADE's ensemble 0.25 N. Not identified yet; next suspects: the node spins the \
+        contact torques drive, and the links' dynamics under them."
+            .into();
+    Ok(report)
+}
+
+/// The rest shape of the middle row of nodes in both codes.
+fn plot_rest_shape(
+    ctx: &Context,
+    report: &mut CaseReport,
+    run: &NetRun,
+    yade_nodes: &[Vec<Real>],
+) -> Result<(), ValidationError> {
+    let half = NET_CELLS / 2;
+    let p = &run.sim.model().particles;
+    let yade_row: Vec<(Real, Real)> = yade_nodes
+        .iter()
+        .filter(|row| row[1] as usize == half)
+        .map(|row| (row[2], row[4]))
+        .collect();
+    let ours: Vec<(Real, Real)> = (0..=NET_CELLS)
+        .map(|i| {
+            let q = p.pos[run.grid.node(i, half) as usize];
+            (q.x, q.z)
+        })
+        .collect();
+    let file = "yade_sphere_on_net_profile.png";
+    plot_xy(
+        &ctx.out_dir.join(file),
+        &PlotSpec {
+            title: "Sphere on a net: nodes of the middle row (y = 0.3) at rest",
+            x_label: "x (m)",
+            y_label: "z (m)",
+            curves: &[
+                Curve::new("YADE 2023.02a", yade_row, CurveStyle::Line),
+                Curve::new("flexdem (yade kinematics)", ours, CurveStyle::Points),
+            ],
+        },
+    )?;
+    report.figures.push(Figure {
+        file: file.into(),
+        caption: "Rest shape of the middle row of nodes: YADE (line) and flexdem (points).".into(),
+    });
+    Ok(())
+}
+
+/// The heights of the sphere and the centre node during the drop in both codes.
+fn plot_history(
+    ctx: &Context,
+    report: &mut CaseReport,
+    run: &NetRun,
+    dir: &std::path::Path,
+) -> Result<(), ValidationError> {
+    let yade_history = read_csv_columns(
+        &dir.join("sphere_on_net_history.csv"),
+        &["time", "sphere_z", "n_contacts", "centre_node_z"],
+    )?;
+    let t_end = run.history.last().map_or(0.0, |h| h.0).max(1.0);
+    let yade = |column: usize| -> Vec<(Real, Real)> {
+        yade_history.iter().map(|r| (r[0], r[column])).filter(|r| r.0 <= t_end).collect()
+    };
+    let file = "yade_sphere_on_net_history.png";
+    plot_xy(
+        &ctx.out_dir.join(file),
+        &PlotSpec {
+            title: "Sphere on a net: heights of the sphere's centre and the centre node",
+            x_label: "time (s)",
+            y_label: "z (m)",
+            curves: &[
+                Curve::new("YADE 2023.02a", yade(1), CurveStyle::Line),
+                Curve::new("flexdem (yade kinematics)", run.history.clone(), CurveStyle::Dashed),
+                Curve::new("YADE: centre node", yade(3), CurveStyle::Line),
+                Curve::new("flexdem: centre node", run.centre_history.clone(), CurveStyle::Dashed),
+            ],
+        },
+    )?;
+    report.figures.push(Figure {
+        file: file.into(),
+        caption: "Heights of the sphere's centre and of the net's centre node during the drop \
+                  (reference start): YADE (lines) and flexdem (dashed), every 1000 steps."
+            .into(),
+    });
+    Ok(())
+}
