@@ -17,7 +17,8 @@
 use crate::link::{LinkClass, LinkSpring, LinkState, LinkStatus};
 use crate::material::FailureMode;
 use crate::rotation::{
-    atan_over_x_series, sin_one_minus_cos_series, ATAN_SERIES_BELOW, SMALL_ANGLE,
+    atan_over_x_series, sin_one_minus_cos_series, ATAN_SERIES_BELOW, FIRST_ORDER_RESTORE_BELOW,
+    SMALL_ANGLE,
 };
 use crate::LinkKinematicsMode;
 use flexdem_geom::lanes::{f64x4, Q4, V3};
@@ -128,7 +129,16 @@ pub fn update_link_lanes(
     let t = V3::select(angle.simd_eq(zero), swung, twisted);
     let t = t.minus(n.scale(n.dot(t)));
     let t2 = t.norm_squared();
-    let restored = V3::select(t2.simd_gt(zero), t.scale((mag2 / t2).sqrt()), t);
+    let delta = (t2 - mag2) * (one / mag2);
+    let first_order = delta.abs().simd_lt(f64x4::splat(FIRST_ORDER_RESTORE_BELOW));
+    let near = t.scale(one - half * delta);
+    // (a lane without shear force keeps it, below: it does not hold the others back)
+    let restored = if (first_order | mag2.simd_eq(zero)).all() {
+        near
+    } else {
+        let far = V3::select(t2.simd_gt(zero), t.scale((mag2 / t2).sqrt()), t);
+        V3::select(first_order, near, far)
+    };
     let rotated = V3::select(mag2.simd_eq(zero), v, restored);
 
     // relative tangential velocity of the midpoint
