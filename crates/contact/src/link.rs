@@ -57,9 +57,11 @@ pub enum LinkKinematicsMode {
     /// frame element (default).
     #[default]
     Beam,
-    /// YADE's kinematics: the tangential displacement scaled by α = 2r/L (softer in shear),
-    /// and a virtual sphere on a connection turning with the axis at YADE's `s × (v1 − v0)`
-    /// where the rigid rate is `s × (v1 − v0)/L²` (`flexdem_elements::virtual_sphere`).
+    /// YADE's kinematics: the tangential displacement scaled by α = 2r/L (softer in shear);
+    /// a virtual sphere on a connection turning with the axis at YADE's `s × (v1 − v0)`
+    /// where the rigid rate is `s × (v1 − v0)/L²`, and a contact's moment shared among the
+    /// connection's nodes as torques, as YADE does (`flexdem_elements::virtual_sphere`; this
+    /// pair does not conserve energy, the `Beam` one does).
     Yade,
 }
 

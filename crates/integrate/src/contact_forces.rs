@@ -14,7 +14,7 @@ use crate::gather::{fits_codes, load_nodes, NO_NODE};
 use crate::neighbours::{merged, Pick, Sink};
 use crate::parallel::{MIN_PARALLEL_CHEAP, MIN_PARALLEL_COSTLY};
 use flexdem_contact::update_frictional_contact;
-use flexdem_elements::virtual_sphere::{distribute_force, Kinematics, NodeLoad};
+use flexdem_elements::virtual_sphere::{distribute_force_as, Kinematics, NodeLoad};
 use flexdem_elements::Model;
 use flexdem_geom::{Real, Vec3};
 use rayon::prelude::*;
@@ -47,15 +47,24 @@ impl ContactPipeline {
             zero(force);
             zero(torque);
         }
-        let k = Kinematics::of(p).with_link_mode(self.link_mode);
+        let mode = self.link_mode;
+        let k = Kinematics::of(p).with_link_mode(mode);
         let zero = [NodeLoad { node: 0, force: Vec3::zeros(), torque: Vec3::zeros() }; 6];
         self.loads.resize(contacts.list.len(), zero);
         self.load_nodes.resize(contacts.list.len(), [NO_NODE; 6]);
         let update = |c: &mut Contact, loads: &mut [NodeLoad; 6], nodes: &mut [u32; 6]| {
             let (vs1, vs2, g) = geometry(model, &k, c);
             let f = update_frictional_contact(&c.params, &mut c.state, &law_kinematics(&g), dt);
-            let l1 = distribute_force(&c.site1, &p.pos, &vs1.center, &g.point, &(-f.force_on_2));
-            let l2 = distribute_force(&c.site2, &p.pos, &vs2.center, &g.point, &f.force_on_2);
+            let l1 = distribute_force_as(
+                mode,
+                &c.site1,
+                &p.pos,
+                &vs1.center,
+                &g.point,
+                &(-f.force_on_2),
+            );
+            let l2 =
+                distribute_force_as(mode, &c.site2, &p.pos, &vs2.center, &g.point, &f.force_on_2);
             loads[..3].copy_from_slice(&l1);
             loads[3..].copy_from_slice(&l2);
             *nodes = load_nodes(c.site1.node_count(), c.site2.node_count(), loads);
@@ -80,8 +89,9 @@ impl ContactPipeline {
                         *dashpot = zero;
                         return;
                     }
-                    let l1 = distribute_force(&c.site1, &p.pos, &vs1.center, &g.point, &(-f));
-                    let l2 = distribute_force(&c.site2, &p.pos, &vs2.center, &g.point, &f);
+                    let l1 =
+                        distribute_force_as(mode, &c.site1, &p.pos, &vs1.center, &g.point, &(-f));
+                    let l2 = distribute_force_as(mode, &c.site2, &p.pos, &vs2.center, &g.point, &f);
                     dashpot[..3].copy_from_slice(&l1);
                     dashpot[3..].copy_from_slice(&l2);
                 });

@@ -278,3 +278,41 @@ fn crossed_normals_follow_the_features() {
     let n = crossing_normal(&e1, &e3, &pos, &n0);
     assert!((n - Vec3::new(0.0, -0.2, 0.97).normalize()).norm() < 1e-15);
 }
+
+/// With YADE's kinematics an edge contact's moment about the virtual sphere goes to the two
+/// nodes as torques `wₖ·τ` and the force as `wₖ·F` (YADE's
+/// `Law2_ScGridCoGeom_FrictPhys_CundallStrack`): the forces sum to F and the moments about
+/// any point to `(c − O) × F`, as with the force couple of the beam kinematics; particles
+/// and faces are shared alike in both modes.
+#[test]
+fn yade_sharing_puts_the_edge_moment_on_the_nodes_as_torques() {
+    let pos = [Vec3::zeros(), Vec3::new(0.1, 0.0, 0.02), Vec3::new(0.0, 0.1, 0.0)];
+    let edge = Site::edge(0, [0, 1], 0.3, 0.005);
+    let center = pos[0] * 0.7 + pos[1] * 0.3;
+    let point = center + Vec3::new(0.0, 0.0, 0.004);
+    let force = Vec3::new(0.2, -1.5, -3.0);
+    let tau = (point - center).cross(&force);
+    let yade = distribute_force_as(LinkKinematicsMode::Yade, &edge, &pos, &center, &point, &force);
+    let beam = distribute_force(&edge, &pos, &center, &point, &force);
+    for (slot, w) in [(0, 0.7), (1, 0.3)] {
+        assert!((yade[slot].force - force * w).norm() < 1e-15);
+        assert!((yade[slot].torque - tau * w).norm() < 1e-15);
+    }
+    // the beam kinematics put the perpendicular part of τ into the forces instead
+    assert!((beam[0].force - force * 0.7).norm() > 1e-3);
+    let moment = |loads: &[NodeLoad; 3], o: Vec3| -> Vec3 {
+        loads[..2].iter().map(|l| (pos[l.node as usize] - o).cross(&l.force) + l.torque).sum()
+    };
+    let o = Vec3::new(0.3, -0.2, 0.5);
+    for loads in [&yade, &beam] {
+        let sum: Vec3 = loads[..2].iter().map(|l| l.force).sum();
+        assert!((sum - force).norm() < 1e-14);
+        assert!((moment(loads, o) - (point - o).cross(&force)).norm() < 1e-14);
+    }
+    let face = Site::face(0, [0, 1, 2], [0.2, 0.3, 0.5], 0.005);
+    let fc = pos[0] * 0.2 + pos[1] * 0.3 + pos[2] * 0.5;
+    assert_eq!(
+        distribute_force_as(LinkKinematicsMode::Yade, &face, &pos, &fc, &point, &force),
+        distribute_force(&face, &pos, &fc, &point, &force)
+    );
+}
