@@ -13,6 +13,8 @@ Run:   yade -j 1 -n -x sphere_on_net_ensemble.py     (from this directory; outpu
                                                        directory, or to $YADE_REF_OUT if set)
 OUTPUT sphere_on_net_ensemble.csv : k,shift,sphere_z,centre_node_z,min_sphere_z_history,n_active,
        fn_mean,fs_mean,sum_contact_fz (active contacts only; min over outputs every 1000 steps)
+       sphere_on_net_ensemble_history.csv : k,step,sphere_z,n_active,fn_mean,fs_mean every 1000
+       steps up to HISTORY_STEPS = 100000 (4 s)
 """
 import os
 
@@ -23,7 +25,9 @@ SCENE = SOURCE[:SOURCE.index('rows = []')]
 KS = [int(k) for k in os.environ.get('ENSEMBLE_KS', ','.join(str(k) for k in range(-7, 9))).split(',')]
 SHIFT = 1e-10
 
+HISTORY_STEPS = 100000
 rows = []
+history = []
 for k in KS:
 	ns = dict(globals())
 	exec(SCENE, ns)
@@ -34,6 +38,10 @@ for k in KS:
 	for _ in range(ns['NSTEP'] // ns['OUTPERIOD']):
 		O.run(ns['OUTPERIOD'], True)
 		lowest = min(lowest, O.bodies[sph].state.pos[2])
+		if O.iter <= HISTORY_STEPS:
+			act = [c for c in contacts() if active(c)]
+			n = max(len(act), 1)
+			history.append((k, O.iter, O.bodies[sph].state.pos[2], len(act), sum(c['fn'] for c in act) / n, sum(c['fs'] for c in act) / n))
 	act = [c for c in contacts() if active(c)]
 	fn = sum(c['fn'] for c in act) / max(len(act), 1)
 	fs = sum(c['fs'] for c in act) / max(len(act), 1)
@@ -44,3 +52,7 @@ with open(os.path.join(OUT, 'sphere_on_net_ensemble.csv'), 'w') as f:
 	f.write('k,shift,sphere_z,centre_node_z,min_sphere_z_history,n_active,fn_mean,fs_mean,sum_contact_fz\n')
 	for r in rows:
 		f.write('%d,%.3e,%.12e,%.12e,%.12e,%d,%.12e,%.12e,%.10e\n' % r)
+with open(os.path.join(OUT, 'sphere_on_net_ensemble_history.csv'), 'w') as f:
+	f.write('k,step,sphere_z,n_active,fn_mean,fs_mean\n')
+	for r in history:
+		f.write('%d,%d,%.12e,%d,%.10e,%.10e\n' % r)
