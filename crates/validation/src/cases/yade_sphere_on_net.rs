@@ -279,6 +279,11 @@ pub fn run_sphere_on_net(ctx: &Context) -> Result<CaseReport, ValidationError> {
         "reference start: mean contact normal force",
         format!("flexdem {:.5} N, YADE {:.5} N", rest.normal, spread(&yade_fn).0),
     );
+    report.inform(
+        "reference start: energy balance error at rest, (B(t) − B(0)) / scale (YADE's pair does \
+         not conserve energy; the beam pair's is tested in tests/energy.rs)",
+        format!("{:.3e}", sim.energy_watch().relative_error(sim.energy())),
+    );
     let support: Real = sim.contacts().iter().map(|c| c.forces.force_on_2.z.abs()).sum();
     report.inform("vertical contact force on the sphere (weight 10 N)", format!("{support:.6} N"));
     let centre_pos = p.pos[centre];
