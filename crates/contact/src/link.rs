@@ -59,9 +59,11 @@ pub enum LinkKinematicsMode {
     Beam,
     /// YADE's kinematics: the tangential displacement scaled by α = 2r/L (softer in shear);
     /// a virtual sphere on a connection turning with the axis at YADE's `s × (v1 − v0)`
-    /// where the rigid rate is `s × (v1 − v0)/L²`, and a contact's moment shared among the
-    /// connection's nodes as torques, as YADE does (`flexdem_elements::virtual_sphere`; this
-    /// pair does not conserve energy, the `Beam` one does).
+    /// where the rigid rate is `s × (v1 − v0)/L²`, a contact's moment shared among the
+    /// connection's nodes as torques, and contacts on connections and PFacets sliding at
+    /// YADE's non-ratcheting relative velocity, as YADE does
+    /// (`flexdem_elements::virtual_sphere`; this pair does not conserve energy, the `Beam`
+    /// one does).
     Yade,
 }
 

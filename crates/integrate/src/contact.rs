@@ -6,13 +6,13 @@
 use crate::dashpots::site_mass;
 use flexdem_contact::{
     effective_mass, ContactDamping, ContactForces, ContactKinematics, FrictionalContact,
-    FrictionalParams,
+    FrictionalParams, LinkKinematicsMode,
 };
 use flexdem_elements::pairs::{self, Candidate, SphereRef};
 use flexdem_elements::touching::Element;
 use flexdem_elements::virtual_sphere::{
-    contact_geometry_crossing, crossing_normal, virtual_sphere, ContactGeometry, Feature,
-    Kinematics, Site, VirtualSphere,
+    contact_geometry_crossing, crossing_normal, non_ratcheting_relative_velocity, virtual_sphere,
+    ContactGeometry, Feature, Kinematics, Site, VirtualSphere,
 };
 use flexdem_elements::Model;
 use flexdem_geom::{Real, Vec3};
@@ -279,7 +279,7 @@ pub(crate) fn geometry_of(
         }
         _ => {
             let vs1 = virtual_sphere(site1, k);
-            let g = contact_geometry_crossing(
+            let mut g = contact_geometry_crossing(
                 &vs1,
                 site1.radius,
                 &vs2,
@@ -287,6 +287,18 @@ pub(crate) fn geometry_of(
                 previous_normal,
                 || crossing_normal(site1, site2, k.pos, previous_normal),
             );
+            // YADE's grid and PFacet functors take the non-ratcheting relative velocity
+            let on_element = |s: &Site| matches!(s.feature, Feature::Edge(_) | Feature::Face(_));
+            if k.link_mode == LinkKinematicsMode::Yade && (on_element(site1) || on_element(site2)) {
+                g.relative_velocity = non_ratcheting_relative_velocity(
+                    &vs1,
+                    site1.radius,
+                    &vs2,
+                    site2.radius,
+                    &g.normal,
+                    g.overlap,
+                );
+            }
             (vs1, vs2, g)
         }
     }

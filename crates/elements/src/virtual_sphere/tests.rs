@@ -316,3 +316,36 @@ fn yade_sharing_puts_the_edge_moment_on_the_nodes_as_torques() {
         distribute_force(&face, &pos, &fc, &point, &force)
     );
 }
+
+/// YADE's non-ratcheting relative velocity: at zero overlap the contact point's relative
+/// velocity; with an overlap δ the translation scaled by α = (r₁ + r₂)/(r₁ + r₂ − δ) and the
+/// spins taken at the full radii.
+#[test]
+fn the_non_ratcheting_velocity_is_the_contact_points_at_zero_overlap() {
+    let n = Vec3::new(0.0, 0.6, -0.8);
+    let (r1, r2) = (0.1, 0.005);
+    let s1 = VirtualSphere {
+        center: Vec3::zeros(),
+        velocity: Vec3::new(0.3, 0.2, -1.0),
+        angular_velocity: Vec3::new(1.0, -2.0, 0.5),
+    };
+    let mut s2 = VirtualSphere {
+        center: n * (r1 + r2),
+        velocity: Vec3::new(-0.1, 0.0, 0.2),
+        angular_velocity: Vec3::new(-3.0, 0.4, 7.0),
+    };
+    let at_point = |s1: &VirtualSphere, s2: &VirtualSphere, c: Vec3| {
+        (s2.velocity + s2.angular_velocity.cross(&(c - s2.center)))
+            - (s1.velocity + s1.angular_velocity.cross(&(c - s1.center)))
+    };
+    let touching = non_ratcheting_relative_velocity(&s1, r1, &s2, r2, &n, 0.0);
+    assert!((touching - at_point(&s1, &s2, n * r1)).norm() < 1e-15);
+    let delta = 1e-3;
+    s2.center = n * (r1 + r2 - delta);
+    let deep = non_ratcheting_relative_velocity(&s1, r1, &s2, r2, &n, delta);
+    let alpha = (r1 + r2) / (r1 + r2 - delta);
+    let expected = (s2.velocity - s1.velocity) * alpha + s2.angular_velocity.cross(&(-n * r2))
+        - s1.angular_velocity.cross(&(n * r1));
+    assert!((deep - expected).norm() < 1e-15);
+    assert!((deep - at_point(&s1, &s2, n * (r1 - 0.5 * delta))).norm() > 1e-4);
+}

@@ -342,9 +342,13 @@ pub fn run_sphere_on_net(ctx: &Context) -> Result<CaseReport, ValidationError> {
         some 2000 steps). **The `yade` link kinematics are YADE's pair for a contact on a \
         link:** the virtual sphere spins with the axis at YADE's s × (v₂ − v₁) (the rigid rate \
         is s × (v₂ − v₁)/L², docs/model.md) and the contact's moment goes to the nodes as node \
-        torques w·τ, as YADE's Law2_ScGridCoGeom_FrictPhys_CundallStrack does (the `beam` \
-        kinematics keep the exact spin and share the moment's perpendicular part as a force \
-        couple, which conserves energy; YADE's pair does not). Measured step by step against \
+        torques w·τ, as YADE's Law2_ScGridCoGeom_FrictPhys_CundallStrack does, and the \
+        shear increment takes YADE's non-ratcheting relative velocity α(v₂ − v₁) − r₂ω₂×n − \
+        r₁ω₁×n (the `beam` kinematics keep the exact spin, the contact point's velocity and \
+        share the moment's perpendicular part as a force couple, which conserves energy; \
+        YADE's pair does not). A single impact of a sliding sphere on a free three-node chain \
+        then follows YADE to 1e-8 of the forces (the contact point's velocity: 3e-4 at the \
+        second step of contact, 5 % of a node's lateral velocity after it). Measured step by step against \
         YADE's history written every step (2026-12-04): the first contact's shear force 0.6714 \
         N against YADE's 0.6716 (exact spin: 0.7734), the second bounce's forces within 0.3%, \
         the third's within 10% (the chatter that follows is sensitive to the nets' 1e-8 m \
@@ -353,7 +357,8 @@ pub fn run_sphere_on_net(ctx: &Context) -> Result<CaseReport, ValidationError> {
         the force couple 2.707 N, 0.564 N, -0.0102 m, but the sphere at rest on four sliding \
         contacts rocked at a growing amplitude (spin 1e-11 to 8e-4 rad/s from step 7 700; \
         YADE's stays at 1e-10); YADE's pair 2.611 N, 0.212 N, -0.0107 m; YADE 2.630 N, 0.250 \
-        N, -0.0101 m. **Why the first-dip check fails:** with YADE's pair the sphere dips \
+        N, -0.0101 m; with the non-ratcheting velocity too 2.627 N, 0.292 N, -0.0107 m. \
+        **Why the first-dip check fails:** with YADE's pair the sphere dips \
         6% deeper than YADE's on average; the difference builds up during the chatter of steps \
         3 900-4 500 (the sphere 1.3e-4 m lower at 4 500 in the reference start), while the \
         nodes' motion after the first bounce matches YADE's to 1e-4 (node (2,3)'s spin 5.3271 \
