@@ -348,7 +348,9 @@ pub fn crossing_normal(site1: &Site, site2: &Site, pos: &[Vec3], previous: &Vec3
 /// of the points at the undeformed radii instead of the contact point's
 /// (`(v₂ + ω₂ × (c − P₂)) − (v₁ + ω₁ × (c − P₁))`, [`ContactGeometry::relative_velocity`]).
 /// The two differ by O(δ/r) of the relative velocity, which at an impact is a few 1e-4 of it
-/// and moves the shear force by as much.
+/// and moves the shear force by as much. α grows without bound as δ nears `r₁ + r₂` (elements
+/// that crossed can get there, docs/model.md §1): it is capped at its value for
+/// `δ = (r₁ + r₂)/2`, 2, so that the velocity stays finite and of the right size.
 pub fn non_ratcheting_relative_velocity(
     s1: &VirtualSphere,
     r1: Real,
@@ -357,7 +359,7 @@ pub fn non_ratcheting_relative_velocity(
     normal: &Vec3,
     overlap: Real,
 ) -> Vec3 {
-    let alpha = (r1 + r2) / (r1 + r2 - overlap);
+    let alpha = (r1 + r2) / (r1 + r2 - overlap.min(0.5 * (r1 + r2)));
     (s2.velocity - s1.velocity) * alpha
         - s2.angular_velocity.cross(normal) * r2
         - s1.angular_velocity.cross(normal) * r1

@@ -348,4 +348,11 @@ fn the_non_ratcheting_velocity_is_the_contact_points_at_zero_overlap() {
         - s1.angular_velocity.cross(&(n * r1));
     assert!((deep - expected).norm() < 1e-15);
     assert!((deep - at_point(&s1, &s2, n * (r1 - 0.5 * delta))).norm() > 1e-4);
+    // crossed skeletons (δ ≥ r₁ + r₂): α capped at 2, the velocity finite
+    for delta in [0.5 * (r1 + r2), r1 + r2, 3.0 * (r1 + r2)] {
+        let crossed = non_ratcheting_relative_velocity(&s1, r1, &s2, r2, &n, delta);
+        let capped = (s2.velocity - s1.velocity) * 2.0 + s2.angular_velocity.cross(&(-n * r2))
+            - s1.angular_velocity.cross(&(n * r1));
+        assert!((crossed - capped).norm() < 1e-14, "{delta}: {crossed}");
+    }
 }
