@@ -173,7 +173,7 @@ pub fn run_sphere_on_net(ctx: &Context) -> Result<CaseReport, ValidationError> {
     let dt = number("/dt")?;
     let max_steps = number("/final/steps")? as u64;
 
-    // the reference start (k = 0) with its histories, then the others
+    // every start, in the order of k (the reference start, k = 0, among them)
     let runs: Vec<Result<NetRun, ValidationError>> = ENSEMBLE_KS
         .collect::<Vec<_>>()
         .into_par_iter()
@@ -209,7 +209,8 @@ pub fn run_sphere_on_net(ctx: &Context) -> Result<CaseReport, ValidationError> {
          (translations blocked, rotations free); a sphere r = {SPHERE_RADIUS} m of mass {SPHERE_MASS} \
          kg (E = 1e8 Pa, friction 30°) starting at rest touching the centre node from above; \
          g = 10 m/s², Cundall damping 0.3, dt = {dt:e} s as in YADE, `yade` link kinematics (YADE's \
-         links and YADE's spin of a virtual sphere on a moving link), contact \
+         links, and for a contact on a link YADE's spin of the virtual sphere, moment shared \
+         as node torques and non-ratcheting relative velocity), contact \
          kn = 2·E·r_s·E·r_c/(E·r_s + E·r_c), ks = 0.3·kn (eq 3–4, as YADE's FrictPhys). Run until \
          every speed stays below 1e-9 m/s at 10 successive outputs 1000 steps apart ({} steps; \
          YADE ran {max_steps}). The ensemble: the same run from {} starts k·{ENSEMBLE_SHIFT:e} m \
