@@ -55,7 +55,7 @@ impl FrictionalParams {
 }
 
 /// State carried by a frictional contact from step to step.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct FrictionalContact {
     /// Force of the shear spring on body 2 (N), tangent to `normal` (without the tangential
     /// dashpot's).

@@ -18,12 +18,14 @@
 pub mod damping;
 pub mod energy;
 pub mod frictional;
+pub mod frictional_lanes;
 pub mod link;
 pub mod link_lanes;
 pub mod material;
 pub mod rotation;
 pub mod stiffness;
 pub mod strength;
+mod transport_lanes;
 
 #[cfg(test)]
 mod test_support;

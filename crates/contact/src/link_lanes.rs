@@ -16,10 +16,8 @@
 
 use crate::link::{LinkClass, LinkSpring, LinkState, LinkStatus};
 use crate::material::FailureMode;
-use crate::rotation::{
-    atan_over_x_series, sin_one_minus_cos_series, ATAN_SERIES_BELOW, FIRST_ORDER_RESTORE_BELOW,
-    SMALL_ANGLE,
-};
+use crate::rotation::{atan_over_x_series, ATAN_SERIES_BELOW};
+use crate::transport_lanes::{flipped, transport_tangent_lanes};
 use crate::LinkKinematicsMode;
 use flexdem_geom::lanes::{f64x4, Q4, V3};
 use flexdem_geom::{Real, Vec3};
@@ -106,40 +104,7 @@ pub fn update_link_lanes(
     let v = V3::gather(|j| states[j].shear_force);
     let a = V3::gather(|j| states[j].normal);
     let angle = spin * dt4;
-    let mag2 = v.norm_squared();
-    let one_plus = one + a.dot(n);
-    let s = a.plus(n);
-    let swung = v.minus(s.scale(s.dot(v) / one_plus)).plus(n.scale(f64x4::splat(2.0) * a.dot(v)));
-    let (sin, omc) = sin_one_minus_cos_series(angle, f64x4::splat);
-    // (a turn beyond the series, |ψ| ≥ 5e-3: libm's `sin_cos` for that lane, as the scalar
-    // law takes it)
-    let (sin, omc) = if angle.abs().simd_lt(f64x4::splat(SMALL_ANGLE)).all() {
-        (sin, omc)
-    } else {
-        let (angles, mut sin, mut omc) = (angle.to_array(), sin.to_array(), omc.to_array());
-        for j in 0..LANES {
-            if !(angles[j].abs() < SMALL_ANGLE) {
-                let (s, c) = angles[j].sin_cos();
-                (sin[j], omc[j]) = (s, 1.0 - c);
-            }
-        }
-        (f64x4::new(sin), f64x4::new(omc))
-    };
-    let twisted = swung.scale(one - omc).plus(n.cross(swung).scale(sin));
-    let t = V3::select(angle.simd_eq(zero), swung, twisted);
-    let t = t.minus(n.scale(n.dot(t)));
-    let t2 = t.norm_squared();
-    let delta = (t2 - mag2) * (one / mag2);
-    let first_order = delta.abs().simd_lt(f64x4::splat(FIRST_ORDER_RESTORE_BELOW));
-    let near = t.scale(one - half * delta);
-    // (a lane without shear force keeps it, below: it does not hold the others back)
-    let restored = if (first_order | mag2.simd_eq(zero)).all() {
-        near
-    } else {
-        let far = V3::select(t2.simd_gt(zero), t.scale((mag2 / t2).sqrt()), t);
-        V3::select(first_order, near, far)
-    };
-    let rotated = V3::select(mag2.simd_eq(zero), v, restored);
+    let rotated = transport_tangent_lanes(v, a, n, angle);
 
     // relative tangential velocity of the midpoint
     let v1 = V3::gather(|j| at.vel[n1[j]]);
@@ -226,7 +191,7 @@ pub fn update_link_lanes(
     // finite turn and relative rotation (|x| < ∞ is false for a NaN)
     let infinite = f64x4::splat(Real::INFINITY);
     let sane = (l.simd_gt(zero)
-        & (mag2.simd_eq(zero) | one_plus.simd_ge(f64x4::splat(1e-12)))
+        & !flipped(v, a, n)
         & angle.abs().simd_lt(infinite)
         & s2.abs().simd_lt(infinite))
     .to_bitmask();

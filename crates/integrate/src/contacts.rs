@@ -491,7 +491,7 @@ impl ContactPipeline {
                 let force = before.params.kn * carried.max(0.0);
                 let c = &mut contacts.list[n];
                 let normal = c.state.normal;
-                c.state = before.state.clone();
+                c.state = before.state;
                 c.state.overlap_offset = 0.0;
                 if distance <= c.site1.radius + c.site2.radius {
                     // the same touching on other features: it keeps the side it was made on

@@ -20,6 +20,8 @@ mod links;
 mod measures;
 mod neighbours;
 mod offsets;
+mod pair_book;
+mod pair_chunk;
 mod pair_keys;
 mod pair_passes;
 mod pair_step;

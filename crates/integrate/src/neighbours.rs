@@ -32,7 +32,7 @@ use serde::{Deserialize, Serialize};
 /// and writes all of it and nothing else (it was 176 bytes with the force applied and the
 /// point written at every update for output alone: 57 % more memory to stream through per
 /// step; the LAMMPS twin's step took 3–10 % longer with it, bench/README's eighth session).
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct PairContact {
     /// Stiffnesses, friction and dashpots.
     pub params: FrictionalParams,
@@ -166,7 +166,7 @@ impl From<Vec<(ContactKey, PairContact)>> for NeighbourList {
 
 impl From<NeighbourList> for Vec<(ContactKey, PairContact)> {
     fn from(list: NeighbourList) -> Self {
-        list.touching().map(|(k, c)| (k, c.clone())).collect()
+        list.touching().map(|(k, c)| (k, *c)).collect()
     }
 }
 
@@ -316,7 +316,7 @@ impl NeighbourList {
             site2,
             owners: owners(key),
             params: c.params,
-            state: c.state.clone(),
+            state: c.state,
             forces: c.forces(applied),
             point: g.point,
         })

@@ -6,15 +6,13 @@
 
 use crate::contact::BirthReport;
 use crate::dashpots::pair_dashpot_power;
-use crate::neighbours::{
-    AppliedForce, LawOut, NeighbourList, PairContact, PairOutcome, Pushed, Sink,
-};
-use crate::pair_keys::{key_at, ContactKey};
-use crate::pair_step::{continuing_pair, first_not_apart, step_pair};
-use crate::pair_store::{BlockContacts, BLOCK, NO_CONTACT};
+use crate::neighbours::{AppliedForce, NeighbourList, PairContact, Sink};
+use crate::pair_book::{ChunkBook, ChunkSums};
+use crate::pair_chunk::ChunkPass;
+use crate::pair_store::{BLOCK, NO_CONTACT};
 use crate::parallel::MAX_CHUNKS_PER_TASK;
 use flexdem_elements::virtual_sphere::{Feature, Kinematics, NodeLoad};
-use flexdem_elements::{Model, Particles};
+use flexdem_elements::Model;
 use flexdem_geom::{Real, Vec3};
 use rayon::prelude::*;
 
@@ -24,60 +22,6 @@ pub(crate) const PAIR_CHUNK: usize = 4096;
 
 /// A chunk holds whole blocks of the contacts' store.
 const _: () = assert!(PAIR_CHUNK % BLOCK == 0);
-
-/// What the pairs of one chunk added to the step's sums, each in pair order (from +0 for the
-/// births and ends, from −0 for the touching pairs' energy, as `Iterator::sum`).
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct ChunkSums {
-    born_energy: Real,
-    released: Real,
-    born_deep: u64,
-    ended_dissipation: Real,
-    /// Elastic energy of the touching pairs after their update.
-    pub(crate) elastic: Real,
-    /// Friction dissipated by the touching pairs over their lives.
-    pub(crate) friction: Real,
-}
-
-impl Default for ChunkSums {
-    fn default() -> Self {
-        ChunkSums {
-            born_energy: 0.0,
-            released: 0.0,
-            born_deep: 0,
-            ended_dissipation: 0.0,
-            elastic: -0.0,
-            friction: -0.0,
-        }
-    }
-}
-
-impl ChunkSums {
-    fn add_outcome(&mut self, o: &PairOutcome) {
-        self.born_energy += o.born_energy;
-        self.released += o.released;
-        self.born_deep += u64::from(o.born_deep);
-        self.ended_dissipation += o.ended_dissipation;
-    }
-
-    /// Adds a touching pair's energy: its elastic energy `elastic` (its law's, or
-    /// [`PairContact::elastic_energy`], the same bits) and its friction over its life.
-    pub(crate) fn add_touching(&mut self, c: &PairContact, elastic: Real) {
-        self.elastic += elastic;
-        self.friction += c.state.dissipated_friction;
-    }
-
-    /// Adds this chunk's sums to the step's: `total`, the report and the ended pairs'
-    /// friction.
-    fn add_to(&self, total: &mut ChunkSums) {
-        total.born_energy += self.born_energy;
-        total.released += self.released;
-        total.born_deep += self.born_deep;
-        total.ended_dissipation += self.ended_dissipation;
-        total.elastic += self.elastic;
-        total.friction += self.friction;
-    }
-}
 
 /// The loads of a touching pair at the parallel update, kept for their sum (`gather.rs`):
 /// the force on body 2 (body 1's is its opposite) and the torques on the two bodies; 72
@@ -89,14 +33,9 @@ pub(crate) struct PairLoads {
 }
 
 impl PairLoads {
-    /// The loads of an outcome (`step_pair`'s: body 1's force is −body 2's, exactly).
-    fn of(o: &PairOutcome) -> Self {
-        Self::of_loads(&o.loads)
-    }
-
     /// The loads of a pair's two node loads (body 1's force is −body 2's, exactly).
     #[inline]
-    fn of_loads(loads: &[NodeLoad; 2]) -> Self {
+    pub(crate) fn of_loads(loads: &[NodeLoad; 2]) -> Self {
         debug_assert_eq!(loads[0].force, -loads[1].force);
         PairLoads { force_on_2: loads[1].force, torques: [loads[0].torque, loads[1].torque] }
     }
@@ -138,44 +77,6 @@ struct ChunkOut {
     outcomes: Vec<(u32, PairLoads)>,
     /// What its pairs added to the step's records.
     book: ChunkBook,
-}
-
-/// What the pairs of one chunk added to the step's records, in pair order (both passes).
-#[derive(Clone, Debug, Default)]
-struct ChunkBook {
-    /// The pairs that started touching.
-    fresh: Vec<usize>,
-    /// The touching pairs whose dashpots pushed, in key order: what `dashpot_dissipation`
-    /// needs, gathered while each contact was at hand.
-    pushed: Vec<Pushed>,
-    /// The touching pairs of a wall and a sphere, in key order: each one's index and the
-    /// force its law applied, as it gave it (the walls' loads, `Contacts::for_each_on_wall`,
-    /// steer servos and make the walls' power: the law's bits, where a sphere pair's force
-    /// is made from its state when asked, [`PairContact::applied`]).
-    walls: Vec<(u32, AppliedForce)>,
-    sums: ChunkSums,
-}
-
-impl ChunkBook {
-    /// Books the step of pair `n`: its outcome `o`, and when it touches after the step
-    /// (`contact`), its energy (`elastic`, what its law gave; the law has appended the
-    /// record of its dashpots).
-    fn record(&mut self, n: usize, o: &PairOutcome, contact: Option<&PairContact>, elastic: Real) {
-        self.sums.add_outcome(o);
-        if o.fresh {
-            self.fresh.push(n);
-        }
-        if let Some(c) = contact {
-            self.record_continuing(c, elastic);
-        }
-    }
-
-    /// Books the step of a contact `c` that went on (its outcome adds +0 to the births' and
-    /// ends' sums, which start at +0 and never reach −0: nothing to add).
-    #[inline]
-    fn record_continuing(&mut self, c: &PairContact, elastic: Real) {
-        self.sums.add_touching(c, elastic);
-    }
 }
 
 /// Buffers of [`NeighbourList::update`] (nothing here is saved).
@@ -276,54 +177,6 @@ impl PairScratch {
     }
 }
 
-/// The step of candidate `n`, two free spheres `ids` whose contact (at `slot` of `block`)
-/// goes on: its law and loads (`continuing_pair`), its energy booked in `book`; None where
-/// the general step has to decide (apart now, centres crossed). Both passes call it.
-#[inline(always)]
-fn went_on(
-    p: &Particles,
-    ids: (u32, u32),
-    slot: u32,
-    block: &mut BlockContacts<PairContact>,
-    book: &mut ChunkBook,
-    n: usize,
-    dt: Real,
-) -> Option<[NodeLoad; 2]> {
-    let mut law = LawOut::new(&mut book.pushed, n);
-    let loads = continuing_pair(p, ids.0, ids.1, slot, block, dt, &mut law)?;
-    let elastic = law.elastic;
-    let c = block.get(slot).expect("a contact that goes on");
-    book.record_continuing(c, elastic);
-    Some(loads)
-}
-
-/// The general step of candidate `n` (`key`, its contact at `slot` of `block`): its
-/// births, ends and law (`step_pair`), booked in `book`; its outcome when the pair touches
-/// after it. Both passes call it for the pairs `went_on` and the apart runs leave.
-#[allow(clippy::too_many_arguments, reason = "one pair's inputs and its book")]
-#[inline(always)]
-fn general_step(
-    model: &Model,
-    k: &Kinematics<'_>,
-    key: &ContactKey,
-    slot: &mut u32,
-    block: &mut BlockContacts<PairContact>,
-    book: &mut ChunkBook,
-    n: usize,
-    dt: Real,
-) -> Option<PairOutcome> {
-    let mut law = LawOut::new(&mut book.pushed, n);
-    let mut o = PairOutcome::default();
-    step_pair(model, k, key, slot, block, dt, &mut o, &mut law);
-    let elastic = law.elastic;
-    book.record(n, &o, block.get(*slot), elastic);
-    let touches = *slot != NO_CONTACT;
-    if touches && matches!(key.0, Feature::Wall(_)) {
-        book.walls.push((n as u32, o.applied));
-    }
-    touches.then_some(o)
-}
-
 impl NeighbourList {
     /// One step of every pair (in parallel): whether it touches; a new contact made as the
     /// general pipeline makes it (`contacts::new_contact`) with its birth accounted for; an
@@ -355,38 +208,16 @@ impl NeighbourList {
             .zip(chunks.par_iter_mut())
             .enumerate()
             .with_max_len(MAX_CHUNKS_PER_TASK)
-            .for_each(|(c, ((((keys, slots), blocks), positions), out))| {
-                let base = c * PAIR_CHUNK;
+            .for_each(|(c, ((((ids, slots), blocks), positions), out))| {
                 blocks.iter_mut().zip(slots.chunks_mut(BLOCK)).for_each(|(b, s)| b.tidy(s));
-                // (the chunk's free spheres' pairs: `..spheres`)
-                let spheres = first_wall.saturating_sub(base).min(keys.len());
-                let mut i = 0;
-                while i < keys.len() {
-                    // the spheres apart without a contact, in a loop of their own
-                    i = first_not_apart(p, &keys[..spheres], &slots[..spheres], i);
-                    if i == keys.len() {
-                        break;
-                    }
-                    let (n, ids, slot) = (base + i, keys[i], &mut slots[i]);
-                    'pair: {
-                        if n < first_wall && *slot != NO_CONTACT {
-                            // two free spheres (the ids are theirs) in contact
-                            let (block, book) = (&mut blocks[i / BLOCK], &mut out.book);
-                            if let Some(loads) = went_on(p, ids, *slot, block, book, n, dt) {
-                                positions[i] = out.outcomes.len() as u32;
-                                out.outcomes.push((n as u32, PairLoads::of_loads(&loads)));
-                                break 'pair;
-                            }
-                        }
-                        let key = &key_at(first_wall, n, ids);
-                        let (block, book) = (&mut blocks[i / BLOCK], &mut out.book);
-                        if let Some(o) = general_step(model, &k, key, slot, block, book, n, dt) {
-                            positions[i] = out.outcomes.len() as u32;
-                            out.outcomes.push((n as u32, PairLoads::of(&o)));
-                        }
-                    }
-                    i += 1;
-                }
+                let base = c * PAIR_CHUNK;
+                let mut pass =
+                    ChunkPass { model, kinematics: &k, ids, slots, blocks, base, first_wall, dt };
+                let outcomes = &mut out.outcomes;
+                pass.step(&mut out.book, |i, _, loads| {
+                    positions[i] = outcomes.len() as u32;
+                    outcomes.push(((base + i) as u32, PairLoads::of_loads(loads)));
+                });
             });
         let (report, total) = scratch.totals(used, ended_dissipation);
         scratch.generation = self.generation();
@@ -410,40 +241,19 @@ impl NeighbourList {
         let k = Kinematics::of(p);
         let used = self.keys.len().div_ceil(PAIR_CHUNK);
         let chunks = chunks_for(&mut scratch.chunks, self.keys.len());
-        self.blocks.iter_mut().zip(self.slots.chunks_mut(BLOCK)).for_each(|(b, s)| b.tidy(s));
         let first_wall = self.keys.first_wall();
-        let all_ids = self.keys.ids();
-        let spheres = first_wall.min(all_ids.len());
-        let mut n = 0;
-        while n < all_ids.len() {
-            // the spheres apart without a contact (what step_pair would say at more cost:
-            // nothing happened), in a loop of their own
-            n = first_not_apart(p, &all_ids[..spheres], &self.slots[..spheres], n);
-            if n == all_ids.len() {
-                break;
-            }
-            let (ids, slot) = (all_ids[n], &mut self.slots[n]);
-            'pair: {
-                if n < first_wall && *slot != NO_CONTACT {
-                    // two free spheres (the ids are theirs, `pair_keys::key_at`) in contact
-                    let block = &mut self.blocks[n / BLOCK];
-                    let book = &mut chunks[n / PAIR_CHUNK].book;
-                    if let Some(loads) = went_on(p, ids, *slot, block, book, n, dt) {
-                        sink(Sink::Before(&(Feature::Particle(ids.0), Feature::Particle(ids.1))));
-                        loads.iter().for_each(|l| sink(Sink::Load(l)));
-                        break 'pair;
-                    }
-                }
-                let key = &key_at(first_wall, n, ids);
-                let block = &mut self.blocks[n / BLOCK];
-                let book = &mut chunks[n / PAIR_CHUNK].book;
-                if let Some(o) = general_step(model, &k, key, slot, block, book, n, dt) {
-                    sink(Sink::Before(key));
-                    let first = usize::from(matches!(key.0, Feature::Wall(_)));
-                    o.loads[first..].iter().for_each(|l| sink(Sink::Load(l)));
-                }
-            }
-            n += 1;
+        let parts = self.keys.ids().chunks(PAIR_CHUNK).zip(self.slots.chunks_mut(PAIR_CHUNK));
+        let parts = parts.zip(self.blocks.chunks_mut(PAIR_CHUNK / BLOCK)).zip(chunks.iter_mut());
+        for (c, (((ids, slots), blocks), out)) in parts.enumerate() {
+            blocks.iter_mut().zip(slots.chunks_mut(BLOCK)).for_each(|(b, s)| b.tidy(s));
+            let base = c * PAIR_CHUNK;
+            let mut pass =
+                ChunkPass { model, kinematics: &k, ids, slots, blocks, base, first_wall, dt };
+            pass.step(&mut out.book, |_, key, loads| {
+                sink(Sink::Before(key));
+                let first = usize::from(matches!(key.0, Feature::Wall(_)));
+                loads[first..].iter().for_each(|l| sink(Sink::Load(l)));
+            });
         }
         let (report, total) = scratch.totals(used, ended_dissipation);
         scratch.generation = self.generation();

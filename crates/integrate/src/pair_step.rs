@@ -274,7 +274,7 @@ mod tests {
             let params = FrictionalParams { kn: 1e5, ks: 4e4, tan_phi: 0.4, cn, ct };
             let mut c = PairContact { params, state: FrictionalContact::new(n) };
             c.state.shear_force = Vec3::new(0.0, 3.0, 0.0);
-            let mut reference = c.state.clone();
+            let mut reference = c.state;
             let g = ContactGeometry {
                 normal: n,
                 overlap: 1e-4,

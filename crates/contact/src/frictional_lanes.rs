@@ -1,0 +1,209 @@
+//! Four sphere–sphere contacts that go on, updated at once (SIMD, `wide::f64x4`): the
+//! geometry of two free spheres, the frictional law with its dashpots
+//! ([`update_frictional_contact`](crate::update_frictional_contact)) and the two bodies'
+//! loads. Every operation is the scalar path's, in its order, lane by lane (IEEE additions,
+//! products, divisions and square roots give the same bits in a vector as alone; no fused
+//! multiply–add), so a lane's state and loads are the scalar update's to the bit. The
+//! scalar law's branches (sliding or not, dashpots or not, a zero shear force, no twist) are
+//! taken lane by lane with selects that give the branch's own value; a twist beyond the
+//! series is libm's for that lane, as the scalar law takes it.
+//!
+//! A lane off the path (apart now, centres crossed or coincident, an overlap not beyond the
+//! contact's offset, a NaN) is left untouched and reported, for the caller's general step.
+//! The scalar path is the engine's (`flexdem-integrate`, `pair_step::continuing_pair`:
+//! `sphere_geometry`, the law, `apply_law`); its tests compare the two bit for bit.
+
+use crate::frictional::{FrictionalContact, FrictionalParams};
+use crate::transport_lanes::{flipped, transport_tangent_lanes};
+use flexdem_geom::lanes::{f64x4, V3};
+use flexdem_geom::{Real, Vec3};
+
+/// Contacts per call.
+pub const LANES: usize = 4;
+
+/// The free spheres the four contacts read: the particles' arrays (as the engine keeps
+/// them) and each contact's two spheres (body 1, body 2).
+#[derive(Clone, Copy)]
+pub struct SpherePairLanes<'a> {
+    /// Centres.
+    pub pos: &'a [Vec3],
+    /// Velocities.
+    pub vel: &'a [Vec3],
+    /// Angular velocities.
+    pub ang_vel: &'a [Vec3],
+    /// Radii.
+    pub radius: &'a [Real],
+    /// Sphere 1 and sphere 2 of each contact.
+    pub pairs: [[usize; 2]; LANES],
+}
+
+/// The four contacts' update on the path, lane by lane (the lanes [`Self::taken`] says took
+/// it): what the scalar law writes to the state and the loads `apply_law` makes.
+#[derive(Clone, Copy, Debug)]
+pub struct SpherePairLanesOut {
+    /// Bit j set: lane j took the path.
+    pub taken: u8,
+    /// Bit j set: lane j's dashpots pushed (their force is not zero).
+    pub pushed: u8,
+    shear: V3,
+    normal: V3,
+    normal_force: f64x4,
+    friction: f64x4,
+    force_on_2: V3,
+    torques: [V3; 2],
+    elastic: f64x4,
+    dashpot: V3,
+    moments: [V3; 2],
+    viscous: f64x4,
+}
+
+impl SpherePairLanesOut {
+    /// Writes lane `j`'s update to its contact's `state` (the scalar law's writes).
+    #[inline(always)]
+    pub fn write_state(&self, j: usize, state: &mut FrictionalContact) {
+        state.shear_force = self.shear.lane(j);
+        state.normal = self.normal.lane(j);
+        state.normal_force = self.normal_force.as_array()[j];
+        state.dissipated_friction += self.friction.as_array()[j];
+    }
+
+    /// Lane `j`'s total force on body 2, Fn·n + Fs (N; body 1 has the opposite).
+    #[inline(always)]
+    pub fn force_on_2(&self, j: usize) -> Vec3 {
+        self.force_on_2.lane(j)
+    }
+
+    /// Lane `j`'s torques about body 1's and body 2's centres, (x_c − c_k) × F_k (N·m).
+    #[inline(always)]
+    pub fn torques(&self, j: usize) -> [Vec3; 2] {
+        [self.torques[0].lane(j), self.torques[1].lane(j)]
+    }
+
+    /// Lane `j`'s elastic energy of the springs after the update (J).
+    #[inline(always)]
+    pub fn elastic_energy(&self, j: usize) -> Real {
+        self.elastic.as_array()[j]
+    }
+
+    /// Lane `j`'s dashpots: their force on body 2 (N; body 1 has the opposite), its moments
+    /// about body 1's and body 2's centres (N·m), and the law's count of their dissipation
+    /// in the update (J). Meaningful where [`Self::pushed`] says they pushed.
+    #[inline(always)]
+    pub fn dashpot(&self, j: usize) -> (Vec3, [Vec3; 2], Real) {
+        let moments = [self.moments[0].lane(j), self.moments[1].lane(j)];
+        (self.dashpot.lane(j), moments, self.viscous.as_array()[j])
+    }
+}
+
+/// One step of the four sphere–sphere contacts `states` (their `params`, their spheres in
+/// `at`), on the path of the module documentation: for the lanes that take it
+/// ([`SpherePairLanesOut::taken`]), what `update_frictional_contact` writes to the state
+/// (for the caller to write, [`SpherePairLanesOut::write_state`]) and the loads.
+///
+/// Geometry of spheres 1, 2 (centres c₁, c₂, radii r₁, r₂): d = c₂ − c₁, n = d/|d|,
+/// δ = r₁ + r₂ − |d|, contact point x_c = c₁ + n(r₁ − δ/2), relative velocity
+/// v = (v₂ + ω₂ × (x_c − c₂)) − (v₁ + ω₁ × (x_c − c₁)), spin n·(ω₁ + ω₂)/2; the path needs
+/// |d| > 1e-14·(r₁ + r₂ + |c₁|∞ + |c₂|∞), d·n₀ > 0 (n₀ the last normal) and δ > 0.
+pub fn update_sphere_pair_lanes(
+    params: [&FrictionalParams; LANES],
+    states: [&FrictionalContact; LANES],
+    at: &SpherePairLanes<'_>,
+    dt: Real,
+) -> SpherePairLanesOut {
+    fn lanes(f: impl Fn(usize) -> Real) -> f64x4 {
+        f64x4::new(std::array::from_fn(f))
+    }
+    let [i1, i2] = [0, 1].map(|side| at.pairs.map(|p| p[side]));
+    let zero = f64x4::splat(0.0);
+    let one = f64x4::splat(1.0);
+    let half = f64x4::splat(0.5);
+    let dt4 = f64x4::splat(dt);
+
+    // geometry (`sphere_geometry`)
+    let c1 = V3::gather(|j| at.pos[i1[j]]);
+    let c2 = V3::gather(|j| at.pos[i2[j]]);
+    let (r1, r2) = (lanes(|j| at.radius[i1[j]]), lanes(|j| at.radius[i2[j]]));
+    let n0 = V3::gather(|j| states[j].normal);
+    let d = c2.minus(c1);
+    let dist = d.norm_squared().sqrt();
+    let inf_norm = |c: V3| c.x.abs().max(c.y.abs()).max(c.z.abs());
+    let scale = r1 + r2 + inf_norm(c1) + inf_norm(c2);
+    let apart_ok = dist.simd_gt(f64x4::splat(1e-14) * scale) & d.dot(n0).simd_gt(zero);
+    let n = d.scale(one / dist);
+    let geometric = r1 + r2 - dist;
+    let point = c1.plus(n.scale(r1 - half * geometric));
+    let (w1, w2) = (V3::gather(|j| at.ang_vel[i1[j]]), V3::gather(|j| at.ang_vel[i2[j]]));
+    let arm1 = point.minus(c1);
+    let arm2 = point.minus(c2);
+    let v1 = V3::gather(|j| at.vel[i1[j]]).plus(w1.cross(arm1));
+    let v2 = V3::gather(|j| at.vel[i2[j]]).plus(w2.cross(arm2));
+    let v = v2.minus(v1);
+    let spin = half * n.dot(w1.plus(w2));
+
+    // the law (`update_frictional_contact`)
+    let kn = lanes(|j| params[j].kn);
+    let ks = lanes(|j| params[j].ks);
+    let tan_phi = lanes(|j| params[j].tan_phi);
+    let cn = lanes(|j| params[j].cn);
+    let ct = lanes(|j| params[j].ct);
+    let overlap = geometric - lanes(|j| states[j].overlap_offset);
+    let shear = V3::gather(|j| states[j].shear_force);
+    let rotated = transport_tangent_lanes(shear, n0, n, spin * dt4);
+    let vn = n.dot(v);
+    let us_dot = v.minus(n.scale(vn));
+    let trial = rotated.minus(us_dot.scale(ks * dt4));
+    let spring_n = kn * overlap;
+    let damped_n = cn.simd_gt(zero);
+    let fn_ = damped_n.select((spring_n - cn * vn).max(zero), spring_n);
+    let damped_t = ct.simd_gt(zero);
+    let none = V3 { x: zero, y: zero, z: zero };
+    let dashpot_t = V3::select(damped_t, us_dot.scale(-ct), none);
+    let total = V3::select(damped_t, trial.plus(dashpot_t), trial);
+    let limit = (fn_ * tan_phi).max(zero);
+    let total2 = total.norm_squared();
+    let sliding = total2.simd_gt(limit * limit);
+    let total_mag = total2.sqrt();
+    let capped = V3::select(total_mag.simd_gt(zero), total.scale(limit / total_mag), none);
+    let fs = V3::select(sliding, capped, total);
+    let spring = V3::select(sliding, V3::select(damped_t, capped.minus(dashpot_t), capped), trial);
+    // (`slip_energy`, floored at 0 without a tangential dashpot: `slip_dissipation`)
+    let has_ks = ks.simd_gt(zero);
+    let slip = has_ks.select(half * rotated.plus(spring).dot(trial.minus(spring)) / ks, zero);
+    let slip = damped_t.select(slip, slip.max(zero));
+    let friction = sliding.select(slip, zero);
+    let damped = damped_n | damped_t;
+    let fd = V3::select(damped, n.scale(fn_ - spring_n).plus(dashpot_t), none);
+    let viscous = damped.select(-fd.dot(v) * dt4, zero);
+    let f2 = n.scale(fn_).plus(fs);
+    // (`spring_energy`, `spring_energy_squared`: zero for a stiffness ≤ 0)
+    let energy_n = kn.simd_gt(zero).select(half * spring_n * spring_n / kn, zero);
+    let energy_s = has_ks.select(half * spring.norm_squared() / ks, zero);
+    let elastic = energy_n + energy_s;
+
+    // the loads (`apply_law`)
+    let on_1 = V3 { x: -f2.x, y: -f2.y, z: -f2.z };
+    let torque_1 = arm1.cross(on_1);
+    let torque_2 = arm2.cross(f2);
+    let moment_1 = arm1.cross(V3 { x: -fd.x, y: -fd.y, z: -fd.z });
+    let moment_2 = arm2.cross(fd);
+    let pushed = (fd.x.simd_ne(zero) | fd.y.simd_ne(zero) | fd.z.simd_ne(zero)).to_bitmask();
+
+    // a NaN fails the comparisons: its lane goes the general way, whose checks name it
+    let taken =
+        (apart_ok & geometric.simd_gt(zero) & overlap.simd_gt(zero) & !flipped(shear, n0, n))
+            .to_bitmask() as u8;
+    SpherePairLanesOut {
+        taken,
+        pushed: pushed as u8,
+        shear: spring,
+        normal: n,
+        normal_force: spring_n,
+        friction,
+        force_on_2: f2,
+        torques: [torque_1, torque_2],
+        elastic,
+        dashpot: fd,
+        moments: [moment_1, moment_2],
+        viscous,
+    }
+}

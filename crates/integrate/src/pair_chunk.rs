@@ -1,0 +1,205 @@
+//! The step of one chunk of candidate pairs of the neighbour list, in key order, for both
+//! passes (`pair_passes.rs`): the runs of spheres apart without a contact skipped in a loop
+//! of their own (`first_not_apart`), the contacts of two free spheres that go on updated four
+//! at once (`update_sphere_pair_lanes`, the scalar path's bits lane by lane), everything
+//! else (births, ends, walls, the lanes the four-lane path leaves) by the general step
+//! (`step_pair`). Each touching pair's loads go to the pass's `emit` in key order, and its
+//! energy and dashpots' record to the chunk's book, as the scalar path gives them.
+//!
+//! The pairs waiting for their four-lane update are updated before any general step (the
+//! loads, sums and records stay in key order); a wait of one pair takes the scalar path.
+
+use crate::neighbours::{LawOut, PairContact, PairOutcome, Pushed};
+use crate::pair_book::ChunkBook;
+use crate::pair_keys::{key_at, ContactKey};
+use crate::pair_step::{continuing_pair, first_not_apart, step_pair};
+use crate::pair_store::{BlockContacts, BLOCK, NO_CONTACT};
+use flexdem_contact::frictional_lanes::{update_sphere_pair_lanes, SpherePairLanes, LANES};
+use flexdem_elements::virtual_sphere::{Feature, Kinematics, NodeLoad};
+use flexdem_elements::{Model, Particles};
+use flexdem_geom::Real;
+
+/// One chunk of candidates and what its step reads: the keys' ids, the slots of their
+/// contacts and the blocks that hold them (the chunk's), the index of its first candidate
+/// in the list (`base`) and of the list's first wall pair.
+pub(crate) struct ChunkPass<'a> {
+    pub(crate) model: &'a Model,
+    pub(crate) kinematics: &'a Kinematics<'a>,
+    pub(crate) ids: &'a [(u32, u32)],
+    pub(crate) slots: &'a mut [u32],
+    pub(crate) blocks: &'a mut [BlockContacts<PairContact>],
+    pub(crate) base: usize,
+    pub(crate) first_wall: usize,
+    pub(crate) dt: Real,
+}
+
+/// Sphere pairs in contact (their indices in the chunk) waiting for their update together.
+#[derive(Default)]
+struct Waiting {
+    at: [usize; LANES],
+    len: usize,
+}
+
+impl ChunkPass<'_> {
+    /// Steps the chunk's candidates in key order (module documentation): `emit(i, key,
+    /// loads)` for each pair `i` (its index in the chunk) that touches after its step, with
+    /// its two node loads (a wall's pair: body 1's is the wall's, not a particle's).
+    pub(crate) fn step(
+        &mut self,
+        book: &mut ChunkBook,
+        mut emit: impl FnMut(usize, &ContactKey, &[NodeLoad; 2]),
+    ) {
+        let p = &self.model.particles;
+        let spheres = self.first_wall.saturating_sub(self.base).min(self.ids.len());
+        let mut waiting = Waiting::default();
+        let mut i = 0;
+        while i < self.ids.len() {
+            // the spheres apart without a contact, in a loop of their own
+            i = first_not_apart(p, &self.ids[..spheres], &self.slots[..spheres], i);
+            if i == self.ids.len() {
+                break;
+            }
+            if i < spheres && self.slots[i] != NO_CONTACT {
+                waiting.at[waiting.len] = i;
+                waiting.len += 1;
+                if waiting.len == LANES {
+                    self.update_waiting(&mut waiting, book, &mut emit);
+                }
+            } else {
+                self.update_waiting(&mut waiting, book, &mut emit);
+                self.step_one(i, book, &mut emit);
+            }
+            i += 1;
+        }
+        self.update_waiting(&mut waiting, book, &mut emit);
+    }
+
+    /// The waiting pairs' step, in order: four (or two, three, padded with the first) at
+    /// once, the lanes the path leaves and a single pair by [`Self::step_one`].
+    fn update_waiting(
+        &mut self,
+        waiting: &mut Waiting,
+        book: &mut ChunkBook,
+        emit: &mut impl FnMut(usize, &ContactKey, &[NodeLoad; 2]),
+    ) {
+        let len = std::mem::take(&mut waiting.len);
+        if len < 2 {
+            waiting.at[..len].iter().for_each(|&i| self.step_one(i, book, emit));
+            return;
+        }
+        let at: [usize; LANES] = std::array::from_fn(|j| waiting.at[if j < len { j } else { 0 }]);
+        let p: &Particles = &self.model.particles;
+        let lanes = SpherePairLanes {
+            pos: &p.pos,
+            vel: &p.vel,
+            ang_vel: &p.ang_vel,
+            radius: &p.radius,
+            pairs: at.map(|i| [self.ids[i].0 as usize, self.ids[i].1 as usize]),
+        };
+        let (blocks, slots) = (&*self.blocks, &*self.slots);
+        let held: [&PairContact; LANES] = std::array::from_fn(|j| {
+            let i = at[j];
+            blocks[i / BLOCK].get(slots[i]).expect("a waiting pair has a contact")
+        });
+        let params = held.map(|c| &c.params);
+        let states = held.map(|c| &c.state);
+        let out = update_sphere_pair_lanes(params, states, &lanes, self.dt);
+        for (j, &i) in at[..len].iter().enumerate() {
+            if out.taken & (1 << j) == 0 {
+                self.step_one(i, book, emit);
+                continue;
+            }
+            let (ids, n) = (self.ids[i], self.base + i);
+            let c = self.blocks[i / BLOCK].get_mut(self.slots[i]).expect("a waiting pair");
+            out.write_state(j, &mut c.state);
+            book.record_continuing(c, out.elastic_energy(j));
+            if out.pushed & (1 << j) != 0 {
+                let (force, moments, viscous) = out.dashpot(j);
+                book.pushed.push(Pushed { index: n as u32, force, moments, viscous });
+            }
+            let (f2, torques) = (out.force_on_2(j), out.torques(j));
+            let loads = [
+                NodeLoad { node: ids.0, force: -f2, torque: torques[0] },
+                NodeLoad { node: ids.1, force: f2, torque: torques[1] },
+            ];
+            emit(i, &(Feature::Particle(ids.0), Feature::Particle(ids.1)), &loads);
+        }
+    }
+
+    /// The step of candidate `i` alone: a contact of two free spheres that goes on by
+    /// [`went_on`], else the general step ([`general_step`]).
+    fn step_one(
+        &mut self,
+        i: usize,
+        book: &mut ChunkBook,
+        emit: &mut impl FnMut(usize, &ContactKey, &[NodeLoad; 2]),
+    ) {
+        let (n, ids) = (self.base + i, self.ids[i]);
+        let p = &self.model.particles;
+        let (block, slot) = (&mut self.blocks[i / BLOCK], &mut self.slots[i]);
+        if n < self.first_wall && *slot != NO_CONTACT {
+            // two free spheres (the ids are theirs, `pair_keys::key_at`) in contact
+            if let Some(loads) = went_on(p, ids, *slot, block, book, n, self.dt) {
+                emit(i, &(Feature::Particle(ids.0), Feature::Particle(ids.1)), &loads);
+                return;
+            }
+        }
+        let key = &key_at(self.first_wall, n, ids);
+        let k = self.kinematics;
+        if let Some(o) = general_step(self.model, k, key, slot, block, book, n, self.dt) {
+            emit(i, key, &o.loads);
+        }
+    }
+}
+
+/// The step of candidate `n`, two free spheres `ids` whose contact (at `slot` of `block`)
+/// goes on: its law and loads (`continuing_pair`), its energy booked in `book`; None where
+/// the general step has to decide (apart now, centres crossed).
+#[inline(always)]
+fn went_on(
+    p: &Particles,
+    ids: (u32, u32),
+    slot: u32,
+    block: &mut BlockContacts<PairContact>,
+    book: &mut ChunkBook,
+    n: usize,
+    dt: Real,
+) -> Option<[NodeLoad; 2]> {
+    let mut law = LawOut::new(&mut book.pushed, n);
+    let loads = continuing_pair(p, ids.0, ids.1, slot, block, dt, &mut law)?;
+    let elastic = law.elastic;
+    let c = block.get(slot).expect("a contact that goes on");
+    book.record_continuing(c, elastic);
+    Some(loads)
+}
+
+/// The general step of candidate `n` (`key`, its contact at `slot` of `block`): its
+/// births, ends and law (`step_pair`), booked in `book`; its outcome when the pair touches
+/// after it.
+#[allow(clippy::too_many_arguments, reason = "one pair's inputs and its book")]
+#[inline(always)]
+fn general_step(
+    model: &Model,
+    k: &Kinematics<'_>,
+    key: &ContactKey,
+    slot: &mut u32,
+    block: &mut BlockContacts<PairContact>,
+    book: &mut ChunkBook,
+    n: usize,
+    dt: Real,
+) -> Option<PairOutcome> {
+    let mut law = LawOut::new(&mut book.pushed, n);
+    let mut o = PairOutcome::default();
+    step_pair(model, k, key, slot, block, dt, &mut o, &mut law);
+    let elastic = law.elastic;
+    book.record(n, &o, block.get(*slot), elastic);
+    let touches = *slot != NO_CONTACT;
+    if touches && matches!(key.0, Feature::Wall(_)) {
+        book.walls.push((n as u32, o.applied));
+    }
+    touches.then_some(o)
+}
+
+#[cfg(test)]
+#[path = "pair_chunk_tests.rs"]
+mod tests;
