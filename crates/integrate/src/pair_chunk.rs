@@ -3,18 +3,25 @@
 //! of their own (`first_not_apart`), the contacts of two free spheres that go on updated four
 //! at once (`update_sphere_pair_lanes`, the scalar path's bits lane by lane), everything
 //! else (births, ends, walls, the lanes the four-lane path leaves) by the general step
-//! (`step_pair`). Each touching pair's loads go to the pass's `emit` in key order, and its
-//! energy and dashpots' record to the chunk's book, as the scalar path gives them.
+//! (`step_pair`). The wall's pairs (after the spheres') likewise: the contacts that go on four
+//! at once (`update_wall_sphere_lanes`), the pairs without a contact that do not touch
+//! skipped (`wall_apart`: their general step does nothing). Each touching pair's loads go to
+//! the pass's `emit` in key order, and its energy, dashpots' record and (a wall's) applied
+//! force to the chunk's book, as the scalar path gives them.
 //!
-//! The pairs waiting for their four-lane update are updated before any general step (the
-//! loads, sums and records stay in key order); a wait of one pair takes the scalar path.
+//! The pairs waiting for their four-lane update are updated before any general step and
+//! before pairs of the other kind wait (the loads, sums and records stay in key order); a
+//! wait of one pair takes the scalar path.
 
-use crate::neighbours::{LawOut, PairContact, PairOutcome, Pushed};
+use crate::neighbours::{AppliedForce, LawOut, PairContact, PairOutcome, Pushed};
 use crate::pair_book::ChunkBook;
 use crate::pair_keys::{key_at, ContactKey};
-use crate::pair_step::{continuing_pair, first_not_apart, step_pair};
+use crate::pair_step::{continuing_pair, first_not_apart, step_pair, wall_apart};
 use crate::pair_store::{BlockContacts, BLOCK, NO_CONTACT};
-use flexdem_contact::frictional_lanes::{update_sphere_pair_lanes, SpherePairLanes, LANES};
+use flexdem_contact::frictional_lanes::{
+    update_sphere_pair_lanes, update_wall_sphere_lanes, SpherePairLanes, SpherePairLanesOut,
+    WallSphereLanes, LANES,
+};
 use flexdem_elements::virtual_sphere::{Feature, Kinematics, NodeLoad};
 use flexdem_elements::{Model, Particles};
 use flexdem_geom::Real;
@@ -33,11 +40,13 @@ pub(crate) struct ChunkPass<'a> {
     pub(crate) dt: Real,
 }
 
-/// Sphere pairs in contact (their indices in the chunk) waiting for their update together.
+/// Pairs in contact (their indices in the chunk) waiting for their update together: two
+/// free spheres each, or (`walls`) a wall and a sphere each.
 #[derive(Default)]
 struct Waiting {
     at: [usize; LANES],
     len: usize,
+    walls: bool,
 }
 
 impl ChunkPass<'_> {
@@ -59,13 +68,18 @@ impl ChunkPass<'_> {
             if i == self.ids.len() {
                 break;
             }
-            if i < spheres && self.slots[i] != NO_CONTACT {
-                waiting.at[waiting.len] = i;
+            let (ids, held) = (self.ids[i], self.slots[i] != NO_CONTACT);
+            let walls = i >= spheres;
+            if held {
+                if waiting.len > 0 && waiting.walls != walls {
+                    self.update_waiting(&mut waiting, book, &mut emit);
+                }
+                (waiting.at[waiting.len], waiting.walls) = (i, walls);
                 waiting.len += 1;
                 if waiting.len == LANES {
                     self.update_waiting(&mut waiting, book, &mut emit);
                 }
-            } else {
+            } else if !(walls && wall_apart(self.model, ids.0, ids.1)) {
                 self.update_waiting(&mut waiting, book, &mut emit);
                 self.step_one(i, book, &mut emit);
             }
@@ -89,41 +103,83 @@ impl ChunkPass<'_> {
         }
         let at: [usize; LANES] = std::array::from_fn(|j| waiting.at[if j < len { j } else { 0 }]);
         let p: &Particles = &self.model.particles;
-        let lanes = SpherePairLanes {
-            pos: &p.pos,
-            vel: &p.vel,
-            ang_vel: &p.ang_vel,
-            radius: &p.radius,
-            pairs: at.map(|i| [self.ids[i].0 as usize, self.ids[i].1 as usize]),
-        };
-        let (blocks, slots) = (&*self.blocks, &*self.slots);
+        let (blocks, slots, ids) = (&*self.blocks, &*self.slots, self.ids);
         let held: [&PairContact; LANES] = std::array::from_fn(|j| {
             let i = at[j];
             blocks[i / BLOCK].get(slots[i]).expect("a waiting pair has a contact")
         });
         let params = held.map(|c| &c.params);
         let states = held.map(|c| &c.state);
-        let out = update_sphere_pair_lanes(params, states, &lanes, self.dt);
+        let out = if waiting.walls {
+            let walls = &self.model.walls;
+            let lanes = WallSphereLanes {
+                pos: &p.pos,
+                vel: &p.vel,
+                ang_vel: &p.ang_vel,
+                radius: &p.radius,
+                walls: at.map(|i| {
+                    let w = &walls[ids[i].0 as usize];
+                    [w.point, w.normal, w.velocity]
+                }),
+                spheres: at.map(|i| ids[i].1 as usize),
+            };
+            update_wall_sphere_lanes(params, states, &lanes, self.dt)
+        } else {
+            let lanes = SpherePairLanes {
+                pos: &p.pos,
+                vel: &p.vel,
+                ang_vel: &p.ang_vel,
+                radius: &p.radius,
+                pairs: at.map(|i| [ids[i].0 as usize, ids[i].1 as usize]),
+            };
+            update_sphere_pair_lanes(params, states, &lanes, self.dt)
+        };
         for (j, &i) in at[..len].iter().enumerate() {
             if out.taken & (1 << j) == 0 {
                 self.step_one(i, book, emit);
-                continue;
+            } else {
+                self.book_lane(&out, j, i, waiting.walls, book, emit);
             }
-            let (ids, n) = (self.ids[i], self.base + i);
-            let c = self.blocks[i / BLOCK].get_mut(self.slots[i]).expect("a waiting pair");
-            out.write_state(j, &mut c.state);
-            book.record_continuing(c, out.elastic_energy(j));
-            if out.pushed & (1 << j) != 0 {
-                let (force, moments, viscous) = out.dashpot(j);
-                book.pushed.push(Pushed { index: n as u32, force, moments, viscous });
-            }
-            let (f2, torques) = (out.force_on_2(j), out.torques(j));
-            let loads = [
-                NodeLoad { node: ids.0, force: -f2, torque: torques[0] },
-                NodeLoad { node: ids.1, force: f2, torque: torques[1] },
-            ];
-            emit(i, &(Feature::Particle(ids.0), Feature::Particle(ids.1)), &loads);
         }
+    }
+
+    /// Books lane `j` of `out`, pair `i` (a wall's when `wall`), which took the four-lane
+    /// path: its state written, its energy, dashpots' record and (a wall's) applied force to
+    /// `book`, its loads to `emit`, as its general step would (a contact that goes on adds
+    /// nothing to the births' and ends' sums).
+    fn book_lane(
+        &mut self,
+        out: &SpherePairLanesOut,
+        j: usize,
+        i: usize,
+        wall: bool,
+        book: &mut ChunkBook,
+        emit: &mut impl FnMut(usize, &ContactKey, &[NodeLoad; 2]),
+    ) {
+        let (ids, n) = (self.ids[i], self.base + i);
+        let c = self.blocks[i / BLOCK].get_mut(self.slots[i]).expect("a waiting pair");
+        out.write_state(j, &mut c.state);
+        book.record_continuing(c, out.elastic_energy(j));
+        if out.pushed & (1 << j) != 0 {
+            let (force, moments, viscous) = out.dashpot(j);
+            book.pushed.push(Pushed { index: n as u32, force, moments, viscous });
+        }
+        let (f2, torques) = (out.force_on_2(j), out.torques(j));
+        let key = if wall {
+            let (normal_force, shear_force) = out.applied(j);
+            let sliding = out.sliding & (1 << j) != 0;
+            book.walls.push((n as u32, AppliedForce { normal_force, shear_force, sliding }));
+            (Feature::Wall(ids.0), Feature::Particle(ids.1))
+        } else {
+            (Feature::Particle(ids.0), Feature::Particle(ids.1))
+        };
+        // (a wall's site has node 0, `Site::wall`)
+        let node_1 = if wall { 0 } else { ids.0 };
+        let loads = [
+            NodeLoad { node: node_1, force: -f2, torque: torques[0] },
+            NodeLoad { node: ids.1, force: f2, torque: torques[1] },
+        ];
+        emit(i, &key, &loads);
     }
 
     /// The step of candidate `i` alone: a contact of two free spheres that goes on by

@@ -28,6 +28,17 @@ pub(crate) fn apart(p: &Particles, key: &ContactKey) -> bool {
     }
 }
 
+/// Whether wall `w` and free sphere `i` do not touch: `wall_touching`'s test (r − gap > 0,
+/// gap = (c − x_w)·n) fails. A wall's pair without a contact that does not touch has
+/// nothing to do in its step.
+#[inline(always)]
+pub(crate) fn wall_apart(model: &Model, w: u32, i: u32) -> bool {
+    let wall = &model.walls[w as usize];
+    let p = &model.particles;
+    let gap = (p.pos[i as usize] - wall.point).dot(&wall.normal);
+    !(p.radius[i as usize] - gap > 0.0)
+}
+
 /// [`apart`] of the free spheres `i` and `j`.
 #[inline(always)]
 pub(crate) fn spheres_apart(p: &Particles, i: usize, j: usize) -> bool {
