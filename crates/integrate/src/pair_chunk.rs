@@ -40,6 +40,16 @@ pub(crate) struct ChunkPass<'a> {
     pub(crate) dt: Real,
 }
 
+/// Where a chunk pass gives each touching pair's loads, in key order (the passes'
+/// implementations inline their `emit` into the four-lane path: as a closure it was a call,
+/// whose loads went through the stack in stores narrower than its loads, which store
+/// forwarding cannot serve).
+pub(crate) trait EmitLoads {
+    /// Pair `i` (its index in the chunk, its `key`) touches after its step, with these two
+    /// node loads (a wall's pair: body 1's is the wall's, not a particle's).
+    fn emit(&mut self, i: usize, key: &ContactKey, loads: &[NodeLoad; 2]);
+}
+
 /// Pairs in contact (their indices in the chunk) waiting for their update together: two
 /// free spheres each, or (`walls`) a wall and a sphere each.
 #[derive(Default)]
@@ -50,14 +60,9 @@ struct Waiting {
 }
 
 impl ChunkPass<'_> {
-    /// Steps the chunk's candidates in key order (module documentation): `emit(i, key,
-    /// loads)` for each pair `i` (its index in the chunk) that touches after its step, with
-    /// its two node loads (a wall's pair: body 1's is the wall's, not a particle's).
-    pub(crate) fn step(
-        &mut self,
-        book: &mut ChunkBook,
-        mut emit: impl FnMut(usize, &ContactKey, &[NodeLoad; 2]),
-    ) {
+    /// Steps the chunk's candidates in key order (module documentation), giving `emit` the
+    /// loads of each pair that touches after its step.
+    pub(crate) fn step(&mut self, book: &mut ChunkBook, emit: &mut impl EmitLoads) {
         let p = &self.model.particles;
         let spheres = self.first_wall.saturating_sub(self.base).min(self.ids.len());
         let mut waiting = Waiting::default();
@@ -72,20 +77,20 @@ impl ChunkPass<'_> {
             let walls = i >= spheres;
             if held {
                 if waiting.len > 0 && waiting.walls != walls {
-                    self.update_waiting(&mut waiting, book, &mut emit);
+                    self.update_waiting(&mut waiting, book, emit);
                 }
                 (waiting.at[waiting.len], waiting.walls) = (i, walls);
                 waiting.len += 1;
                 if waiting.len == LANES {
-                    self.update_waiting(&mut waiting, book, &mut emit);
+                    self.update_waiting(&mut waiting, book, emit);
                 }
             } else if !(walls && wall_apart(self.model, ids.0, ids.1)) {
-                self.update_waiting(&mut waiting, book, &mut emit);
-                self.step_one(i, book, &mut emit);
+                self.update_waiting(&mut waiting, book, emit);
+                self.step_one(i, book, emit);
             }
             i += 1;
         }
-        self.update_waiting(&mut waiting, book, &mut emit);
+        self.update_waiting(&mut waiting, book, emit);
     }
 
     /// The waiting pairs' step, in order: four (or two, three, padded with the first) at
@@ -94,7 +99,7 @@ impl ChunkPass<'_> {
         &mut self,
         waiting: &mut Waiting,
         book: &mut ChunkBook,
-        emit: &mut impl FnMut(usize, &ContactKey, &[NodeLoad; 2]),
+        emit: &mut impl EmitLoads,
     ) {
         let len = std::mem::take(&mut waiting.len);
         if len < 2 {
@@ -154,7 +159,7 @@ impl ChunkPass<'_> {
         i: usize,
         wall: bool,
         book: &mut ChunkBook,
-        emit: &mut impl FnMut(usize, &ContactKey, &[NodeLoad; 2]),
+        emit: &mut impl EmitLoads,
     ) {
         let (ids, n) = (self.ids[i], self.base + i);
         let c = self.blocks[i / BLOCK].get_mut(self.slots[i]).expect("a waiting pair");
@@ -179,31 +184,26 @@ impl ChunkPass<'_> {
             NodeLoad { node: node_1, force: -f2, torque: torques[0] },
             NodeLoad { node: ids.1, force: f2, torque: torques[1] },
         ];
-        emit(i, &key, &loads);
+        emit.emit(i, &key, &loads);
     }
 
     /// The step of candidate `i` alone: a contact of two free spheres that goes on by
     /// [`went_on`], else the general step ([`general_step`]).
-    fn step_one(
-        &mut self,
-        i: usize,
-        book: &mut ChunkBook,
-        emit: &mut impl FnMut(usize, &ContactKey, &[NodeLoad; 2]),
-    ) {
+    fn step_one(&mut self, i: usize, book: &mut ChunkBook, emit: &mut impl EmitLoads) {
         let (n, ids) = (self.base + i, self.ids[i]);
         let p = &self.model.particles;
         let (block, slot) = (&mut self.blocks[i / BLOCK], &mut self.slots[i]);
         if n < self.first_wall && *slot != NO_CONTACT {
             // two free spheres (the ids are theirs, `pair_keys::key_at`) in contact
             if let Some(loads) = went_on(p, ids, *slot, block, book, n, self.dt) {
-                emit(i, &(Feature::Particle(ids.0), Feature::Particle(ids.1)), &loads);
+                emit.emit(i, &(Feature::Particle(ids.0), Feature::Particle(ids.1)), &loads);
                 return;
             }
         }
         let key = &key_at(self.first_wall, n, ids);
         let k = self.kinematics;
         if let Some(o) = general_step(self.model, k, key, slot, block, book, n, self.dt) {
-            emit(i, key, &o.loads);
+            emit.emit(i, key, &o.loads);
         }
     }
 }

@@ -8,7 +8,8 @@ use crate::contact::BirthReport;
 use crate::dashpots::pair_dashpot_power;
 use crate::neighbours::{AppliedForce, NeighbourList, PairContact, Sink};
 use crate::pair_book::{ChunkBook, ChunkSums};
-use crate::pair_chunk::ChunkPass;
+use crate::pair_chunk::{ChunkPass, EmitLoads};
+use crate::pair_keys::ContactKey;
 use crate::pair_store::{BLOCK, NO_CONTACT};
 use crate::parallel::MAX_CHUNKS_PER_TASK;
 use flexdem_elements::virtual_sphere::{Feature, Kinematics, NodeLoad};
@@ -45,6 +46,37 @@ impl PairLoads {
     fn load(&self, side: usize, node: u32) -> NodeLoad {
         let force = if side == 0 { -self.force_on_2 } else { self.force_on_2 };
         NodeLoad { node, force, torque: self.torques[side] }
+    }
+}
+
+/// The parallel update's [`EmitLoads`]: each touching pair's loads kept in its chunk's
+/// outcomes, and where, for their sum per particle (`gather.rs`).
+struct ToOutcomes<'a> {
+    positions: &'a mut [u32],
+    outcomes: &'a mut Vec<(u32, PairLoads)>,
+    base: usize,
+}
+
+impl EmitLoads for ToOutcomes<'_> {
+    #[inline(always)]
+    fn emit(&mut self, i: usize, _: &ContactKey, loads: &[NodeLoad; 2]) {
+        self.positions[i] = self.outcomes.len() as u32;
+        self.outcomes.push(((self.base + i) as u32, PairLoads::of_loads(loads)));
+    }
+}
+
+/// The one-pass update's [`EmitLoads`]: each touching pair's key, then its particles'
+/// loads, to the sink.
+struct ToSink<'a, F>(&'a mut F);
+
+impl<F: FnMut(Sink<'_>)> EmitLoads for ToSink<'_, F> {
+    #[inline(always)]
+    fn emit(&mut self, _: usize, key: &ContactKey, loads: &[NodeLoad; 2]) {
+        (self.0)(Sink::Before(key));
+        if !matches!(key.0, Feature::Wall(_)) {
+            (self.0)(Sink::Load(&loads[0]));
+        }
+        (self.0)(Sink::Load(&loads[1]));
     }
 }
 
@@ -213,11 +245,8 @@ impl NeighbourList {
                 let base = c * PAIR_CHUNK;
                 let mut pass =
                     ChunkPass { model, kinematics: &k, ids, slots, blocks, base, first_wall, dt };
-                let outcomes = &mut out.outcomes;
-                pass.step(&mut out.book, |i, _, loads| {
-                    positions[i] = outcomes.len() as u32;
-                    outcomes.push(((base + i) as u32, PairLoads::of_loads(loads)));
-                });
+                let mut to = ToOutcomes { positions, outcomes: &mut out.outcomes, base };
+                pass.step(&mut out.book, &mut to);
             });
         let (report, total) = scratch.totals(used, ended_dissipation);
         scratch.generation = self.generation();
@@ -249,11 +278,7 @@ impl NeighbourList {
             let base = c * PAIR_CHUNK;
             let mut pass =
                 ChunkPass { model, kinematics: &k, ids, slots, blocks, base, first_wall, dt };
-            pass.step(&mut out.book, |_, key, loads| {
-                sink(Sink::Before(key));
-                let first = usize::from(matches!(key.0, Feature::Wall(_)));
-                loads[first..].iter().for_each(|l| sink(Sink::Load(l)));
-            });
+            pass.step(&mut out.book, &mut ToSink(&mut sink));
         }
         let (report, total) = scratch.totals(used, ended_dissipation);
         scratch.generation = self.generation();
