@@ -139,12 +139,35 @@ impl ChunkPass<'_> {
             };
             update_sphere_pair_lanes(params, states, &lanes, self.dt)
         };
-        for (j, &i) in at[..len].iter().enumerate() {
-            if out.taken & (1 << j) == 0 {
-                self.step_one(i, book, emit);
-            } else {
-                self.book_lane(&out, j, i, waiting.walls, book, emit);
-            }
+        // (lane by lane with a constant index: with a variable one, the lanes' values were
+        // read by AVX-512 gathers, microcoded, a twentieth of the LAMMPS twin's step)
+        let walls = waiting.walls;
+        self.lane_step::<0>(&out, &at, len, walls, book, emit);
+        self.lane_step::<1>(&out, &at, len, walls, book, emit);
+        self.lane_step::<2>(&out, &at, len, walls, book, emit);
+        self.lane_step::<3>(&out, &at, len, walls, book, emit);
+    }
+
+    /// Lane `J` of the waiting pairs `at` (if it holds one of the `len`): booked as the
+    /// four-lane path gave it ([`Self::book_lane`]), or stepped alone when the path left it.
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments, reason = "the lanes' update and where it goes")]
+    fn lane_step<const J: usize>(
+        &mut self,
+        out: &SpherePairLanesOut,
+        at: &[usize; LANES],
+        len: usize,
+        walls: bool,
+        book: &mut ChunkBook,
+        emit: &mut impl EmitLoads,
+    ) {
+        if J >= len {
+            return;
+        }
+        if out.taken & (1 << J) == 0 {
+            self.step_one(at[J], book, emit);
+        } else {
+            self.book_lane(out, J, at[J], walls, book, emit);
         }
     }
 
@@ -152,6 +175,7 @@ impl ChunkPass<'_> {
     /// path: its state written, its energy, dashpots' record and (a wall's) applied force to
     /// `book`, its loads to `emit`, as its general step would (a contact that goes on adds
     /// nothing to the births' and ends' sums).
+    #[inline(always)]
     fn book_lane(
         &mut self,
         out: &SpherePairLanesOut,
