@@ -41,7 +41,7 @@ pub struct SpherePairLanes<'a> {
 /// The four contacts' update on the path, lane by lane (the lanes [`Self::taken`] says took
 /// it): what the scalar law writes to the state and the loads `apply_law` makes.
 #[derive(Clone, Copy, Debug)]
-pub struct SpherePairLanesOut {
+pub struct ContactLanesOut {
     /// Bit j set: lane j took the path.
     pub taken: u8,
     /// Bit j set: lane j's dashpots pushed (their force is not zero).
@@ -62,7 +62,7 @@ pub struct SpherePairLanesOut {
     viscous: f64x4,
 }
 
-impl SpherePairLanesOut {
+impl ContactLanesOut {
     /// Writes lane `j`'s update to its contact's `state` (the scalar law's writes).
     #[inline(always)]
     pub fn write_state(&self, j: usize, state: &mut FrictionalContact) {
@@ -158,7 +158,7 @@ fn lanes(f: impl Fn(usize) -> Real) -> f64x4 {
 
 /// `update_frictional_contact` of four contacts, its operations in its order lane by lane
 /// (module documentation), reading their `params` and `states` (written by the caller,
-/// [`SpherePairLanesOut::write_state`]).
+/// [`ContactLanesOut::write_state`]).
 #[inline(always)]
 fn law_lanes(
     params: [&FrictionalParams; LANES],
@@ -228,14 +228,14 @@ fn law_lanes(
 /// opposite, the torques and the dashpots' moments about each centre); `taken` the lanes on
 /// the path.
 #[inline(always)]
-fn loads_lanes(law: &Law4, n: V3, point: V3, c1: V3, c2: V3, taken: f64x4) -> SpherePairLanesOut {
+fn loads_lanes(law: &Law4, n: V3, point: V3, c1: V3, c2: V3, taken: f64x4) -> ContactLanesOut {
     let zero = f64x4::splat(0.0);
     let f2 = n.scale(law.fn_).plus(law.fs);
     let neg = |v: V3| V3 { x: -v.x, y: -v.y, z: -v.z };
     let (arm1, arm2) = (point.minus(c1), point.minus(c2));
     let fd = law.dashpot;
     let pushed = fd.x.simd_ne(zero) | fd.y.simd_ne(zero) | fd.z.simd_ne(zero);
-    SpherePairLanesOut {
+    ContactLanesOut {
         taken: taken.to_bitmask() as u8,
         pushed: pushed.to_bitmask() as u8,
         sliding: law.sliding.to_bitmask() as u8,
@@ -256,8 +256,8 @@ fn loads_lanes(law: &Law4, n: V3, point: V3, c1: V3, c2: V3, taken: f64x4) -> Sp
 
 /// One step of the four sphere–sphere contacts `states` (their `params`, their spheres in
 /// `at`), on the path of the module documentation: for the lanes that take it
-/// ([`SpherePairLanesOut::taken`]), what `update_frictional_contact` writes to the state
-/// (for the caller to write, [`SpherePairLanesOut::write_state`]) and the loads.
+/// ([`ContactLanesOut::taken`]), what `update_frictional_contact` writes to the state
+/// (for the caller to write, [`ContactLanesOut::write_state`]) and the loads.
 ///
 /// Geometry of spheres 1, 2 (centres c₁, c₂, radii r₁, r₂): d = c₂ − c₁, n = d/|d|,
 /// δ = r₁ + r₂ − |d|, contact point x_c = c₁ + n(r₁ − δ/2), relative velocity
@@ -268,7 +268,7 @@ pub fn update_sphere_pair_lanes(
     states: [&FrictionalContact; LANES],
     at: &SpherePairLanes<'_>,
     dt: Real,
-) -> SpherePairLanesOut {
+) -> ContactLanesOut {
     let [i1, i2] = [0, 1].map(|side| at.pairs.map(|p| p[side]));
     let zero = f64x4::splat(0.0);
     let one = f64x4::splat(1.0);
@@ -310,7 +310,7 @@ pub fn update_wall_sphere_lanes(
     states: [&FrictionalContact; LANES],
     at: &WallSphereLanes<'_>,
     dt: Real,
-) -> SpherePairLanesOut {
+) -> ContactLanesOut {
     let i = at.spheres;
     let zero = f64x4::splat(0.0);
     let half = f64x4::splat(0.5);

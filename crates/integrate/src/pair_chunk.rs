@@ -19,7 +19,7 @@ use crate::pair_keys::{key_at, ContactKey};
 use crate::pair_step::{continuing_pair, first_not_apart, step_pair, wall_apart};
 use crate::pair_store::{BlockContacts, BLOCK, NO_CONTACT};
 use flexdem_contact::frictional_lanes::{
-    update_sphere_pair_lanes, update_wall_sphere_lanes, SpherePairLanes, SpherePairLanesOut,
+    update_sphere_pair_lanes, update_wall_sphere_lanes, ContactLanesOut, SpherePairLanes,
     WallSphereLanes, LANES,
 };
 use flexdem_elements::virtual_sphere::{Feature, Kinematics, NodeLoad};
@@ -154,7 +154,7 @@ impl ChunkPass<'_> {
     #[allow(clippy::too_many_arguments, reason = "the lanes' update and where it goes")]
     fn lane_step<const J: usize>(
         &mut self,
-        out: &SpherePairLanesOut,
+        out: &ContactLanesOut,
         at: &[usize; LANES],
         len: usize,
         walls: bool,
@@ -178,7 +178,7 @@ impl ChunkPass<'_> {
     #[inline(always)]
     fn book_lane(
         &mut self,
-        out: &SpherePairLanesOut,
+        out: &ContactLanesOut,
         j: usize,
         i: usize,
         wall: bool,

@@ -5,7 +5,7 @@ use crate::neighbours::{LawOut, PairContact, PairOutcome, Pushed};
 use crate::pair_step::{continuing_pair, step_pair};
 use crate::pair_store::BlockContacts;
 use flexdem_contact::frictional_lanes::{
-    update_sphere_pair_lanes, update_wall_sphere_lanes, SpherePairLanes, SpherePairLanesOut,
+    update_sphere_pair_lanes, update_wall_sphere_lanes, ContactLanesOut, SpherePairLanes,
     WallSphereLanes, LANES,
 };
 use flexdem_contact::{FrictionalContact, FrictionalParams, Material};
@@ -145,7 +145,7 @@ fn four_lanes_are_the_scalar_path_to_the_bit() {
 
 /// Lane `j` of `out` against the scalar path's loads, state, energy and dashpots' record.
 fn compare_lane(
-    out: &SpherePairLanesOut,
+    out: &ContactLanesOut,
     j: usize,
     before: &FrictionalContact,
     after: &FrictionalContact,
