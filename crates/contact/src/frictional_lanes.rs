@@ -108,9 +108,9 @@ impl ContactLanesOut {
     }
 }
 
-/// The free spheres of four contacts' walls (planes) and spheres (body 1 a wall, body 2 a
-/// sphere): the particles' arrays and, per contact, its wall's point, unit normal and
-/// velocity and its sphere.
+/// What four wall–sphere contacts read (body 1 a wall, a plane; body 2 a free sphere): the
+/// particles' arrays and, per contact, its wall's point, unit normal and velocity and its
+/// sphere.
 #[derive(Clone, Copy)]
 pub struct WallSphereLanes<'a> {
     /// Centres.

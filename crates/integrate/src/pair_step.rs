@@ -2,8 +2,9 @@
 //! spheres are apart before anything else (`apart`), the hot case of a sphere–sphere contact
 //! that goes on (`continuing_spheres`: one distance, the law, two loads), and the general
 //! step (`step_pair`) that finds a first touch, an end, a wall's contact, with their energy
-//! accounted for as the general pipeline (`contacts.rs`) accounts for them. The passes over
-//! the candidates (`pair_passes.rs`) call these.
+//! accounted for as the general pipeline (`contacts.rs`) accounts for them. The chunk pass
+//! (`pair_chunk.rs`) calls these for the pairs its four-lane path does not take, and its
+//! tests take `continuing_pair` and `step_pair` as the bits the lanes must give.
 
 use crate::contact::{
     birth_jump, geometry_of, law_kinematics, new_contact, sphere_touching, wall_touching,
