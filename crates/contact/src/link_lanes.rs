@@ -4,8 +4,9 @@
 //! the same order, lane by lane (IEEE additions, products, divisions and square roots give
 //! the same bits in a vector as alone; no fused multiply–add), so a lane's state and loads
 //! are the scalar update's to the bit. Where the scalar law calls libm (a twist of 5e-3 rad
-//! or more in the step, a relative rotation beyond the series of `rotation_vector`) that lane's
-//! coefficient is computed alone by the same call. A lane off the path (broken or
+//! or more in the step) that lane's coefficient is computed alone by the same call; a
+//! relative rotation beyond the series of `rotation_vector` takes the four lanes' atan
+//! together ([`atan_of_ratio_lanes`], the scalar `atan_of_ratio`'s operations). A lane off the path (broken or
 //! frictional, plastic, a limit reached, coincident nodes, a flipped normal, a NaN) is left
 //! untouched and reported, for the caller to update with the scalar law.
 //!
@@ -16,12 +17,16 @@
 
 use crate::link::{LinkClass, LinkSpring, LinkState, LinkStatus};
 use crate::material::FailureMode;
-use crate::rotation::{atan_over_x_series, ATAN_SERIES_BELOW};
+use crate::rotation::{
+    atan_over_x_series, atan_rational, ATAN_DIRECT_UP_TO, ATAN_MORE_BITS, ATAN_OFFSET_UP_TO,
+    ATAN_SERIES_BELOW,
+};
 use crate::transport_lanes::{flipped, transport_tangent_lanes};
 use crate::LinkKinematicsMode;
 use flexdem_geom::lanes::{f64x4, Q4, V3};
 use flexdem_geom::{Real, Vec3};
 use nalgebra::UnitQuaternion;
+use std::f64::consts::{FRAC_PI_2, FRAC_PI_4};
 
 /// Links per call.
 pub const LANES: usize = 4;
@@ -151,20 +156,15 @@ pub fn update_link_lanes(
     let factor = f64x4::splat(2.0) * inv_w * series;
     let sign = q.w & f64x4::splat(-0.0);
     let factor = factor.abs() | sign;
-    // (a relative rotation beyond the series: 2·atan2(|v|, |w|)·sign(w)/|v| for that lane,
-    // libm's `atan2` as the scalar law takes it)
-    let factor = if s2.simd_lt(limit * limit).all() {
+    // (a relative rotation beyond the series: 2·atan(|v|/|w|)·sign(w)/|v|, the four lanes'
+    // atan together as the scalar law's `atan_of_ratio` computes each)
+    let in_series = s2.simd_lt(limit * limit);
+    let factor = if in_series.all() {
         factor
     } else {
-        let (s2, limit, aw, w) = (s2.to_array(), limit.to_array(), aw.to_array(), q.w.to_array());
-        let mut factor = factor.to_array();
-        for j in 0..LANES {
-            if !(s2[j] < limit[j] * limit[j]) {
-                let s = s2[j].sqrt();
-                factor[j] = (2.0 * s.atan2(aw[j])).copysign(w[j]) / s;
-            }
-        }
-        f64x4::new(factor)
+        let s = s2.sqrt();
+        let beyond = (f64x4::splat(2.0) * atan_of_ratio_lanes(s, aw)).abs() | sign;
+        in_series.select(factor, beyond / s)
     };
     let theta = V3::select(s2.simd_eq(zero), V3::gather(|_| Vec3::zeros()), qv.scale(factor));
     let tw = n.scale(n.dot(theta));
@@ -224,6 +224,23 @@ pub fn update_link_lanes(
         taken |= 1 << j;
     }
     taken
+}
+
+/// [`atan_of_ratio`](crate::rotation::atan_of_ratio) of four lanes: each lane's reduction
+/// chosen by selects (the quotient's numerator and denominator, the offset and its extra
+/// bits), one division for the four, then the same rational function: the scalar function's
+/// bits lane by lane.
+#[inline(always)]
+fn atan_of_ratio_lanes(s: f64x4, a: f64x4) -> f64x4 {
+    let direct = s.simd_le(f64x4::splat(ATAN_DIRECT_UP_TO) * a);
+    let offset = s.simd_le(f64x4::splat(ATAN_OFFSET_UP_TO) * a);
+    let pick = |d: f64x4, o: f64x4, far: f64x4| direct.select(d, offset.select(o, far));
+    let splat = f64x4::splat;
+    let num = pick(s, s - a, -a);
+    let den = pick(a, s + a, s);
+    let base = pick(splat(0.0), splat(FRAC_PI_4), splat(FRAC_PI_2));
+    let more = pick(splat(0.0), splat(0.5 * ATAN_MORE_BITS), splat(ATAN_MORE_BITS));
+    atan_rational(num / den, base, more, splat)
 }
 
 #[cfg(test)]
