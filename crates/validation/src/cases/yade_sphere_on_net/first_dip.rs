@@ -9,8 +9,10 @@
 //! were independent.
 
 use super::scene::run_net;
+use super::stats::{block_standard_error, mean, standard_deviation};
 use crate::cases::yade_side_by_side::read_csv_columns;
 use crate::report::{CaseReport, Check};
+use crate::runner::on_all_threads;
 use crate::ValidationError;
 use flexdem_geom::Real;
 use rayon::prelude::*;
@@ -22,8 +24,6 @@ pub(super) const FIRST_DIP_SHIFT: Real = 1e-8;
 pub(super) const FIRST_DIP_KS: std::ops::Range<i32> = -100..100;
 /// Steps over which the lowest height is taken (0.4 s: the first dip, not the second).
 pub(super) const FIRST_DIP_STEPS: u64 = 10_000;
-/// Consecutive starts per block of [`block_standard_error`].
-const BLOCK: usize = 10;
 
 /// One code's first dips, in the order of `k`.
 #[derive(Clone, Debug, PartialEq)]
@@ -32,26 +32,6 @@ pub(super) struct FirstDips {
     pub(super) lowest: Vec<Real>,
     /// The step at which it was reached.
     pub(super) step: Vec<Real>,
-}
-
-/// Mean of `x`.
-pub(super) fn mean(x: &[Real]) -> Real {
-    x.iter().sum::<Real>() / x.len().max(1) as Real
-}
-
-/// Sample standard deviation of `x`.
-pub(super) fn standard_deviation(x: &[Real]) -> Real {
-    let m = mean(x);
-    (x.iter().map(|v| (v - m).powi(2)).sum::<Real>() / (x.len().max(2) - 1) as Real).sqrt()
-}
-
-/// The standard error of the mean of `x` from the means of its blocks of [`BLOCK`]
-/// consecutive values: `s_b/√n_b`, where `s_b` is the standard deviation of the `n_b` block
-/// means. Values correlated with their neighbours make the block means spread more than
-/// `s/√BLOCK`, so this is larger than `s/√n` and does not overstate what the mean knows.
-pub(super) fn block_standard_error(x: &[Real]) -> Real {
-    let means: Vec<Real> = x.chunks_exact(BLOCK).map(mean).collect();
-    standard_deviation(&means) / (means.len() as Real).sqrt()
 }
 
 /// flexdem's run from the start `shift` higher: the sphere's lowest height over the first
@@ -71,11 +51,13 @@ fn first_dip(dt: Real, shift: Real) -> Result<(Real, u64), ValidationError> {
 
 /// flexdem's first dips from every start, in the order of `k`.
 pub(super) fn flexdem_first_dips(dt: Real) -> Result<FirstDips, ValidationError> {
-    let dips: Vec<Result<(Real, u64), ValidationError>> = FIRST_DIP_KS
-        .collect::<Vec<_>>()
-        .into_par_iter()
-        .map(|k| first_dip(dt, k as Real * FIRST_DIP_SHIFT))
-        .collect();
+    let dips: Vec<Result<(Real, u64), ValidationError>> = on_all_threads(|| {
+        FIRST_DIP_KS
+            .collect::<Vec<_>>()
+            .into_par_iter()
+            .map(|k| first_dip(dt, k as Real * FIRST_DIP_SHIFT))
+            .collect()
+    });
     let dips = dips.into_iter().collect::<Result<Vec<_>, _>>()?;
     Ok(FirstDips {
         lowest: dips.iter().map(|d| d.0).collect(),
@@ -162,28 +144,4 @@ pub(super) fn push_first_dip(report: &mut CaseReport, yade: &FirstDips, ours: &F
             standard_deviation(&yade.step)
         ),
     );
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn independent_blocks_give_the_usual_standard_error() {
-        // 20 blocks whose means are ±1 alternately (s_b = √(20/19)), each block constant
-        let x: Vec<Real> =
-            (0..200).map(|i| if (i / BLOCK) % 2 == 0 { 1.0 } else { -1.0 }).collect();
-        let expected = (20.0 / 19.0 as Real).sqrt() / 20.0f64.sqrt();
-        assert!((block_standard_error(&x) - expected).abs() < 1e-12);
-        // the same values taken as independent would claim a standard error √10 smaller
-        let naive = standard_deviation(&x) / (x.len() as Real).sqrt();
-        assert!(block_standard_error(&x) > 3.0 * naive);
-    }
-
-    #[test]
-    fn mean_and_standard_deviation() {
-        let x = [1.0, 2.0, 3.0, 4.0];
-        assert_eq!(mean(&x), 2.5);
-        assert!((standard_deviation(&x) - (5.0 / 3.0 as Real).sqrt()).abs() < 1e-15);
-    }
 }

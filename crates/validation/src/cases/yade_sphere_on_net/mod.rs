@@ -1,20 +1,25 @@
 //! `yade_sphere_on_net`: a sphere dropped on a net pinned at its corners, against YADE
 //! 2023.02a (`validation/yade/sphere_on_net/`): the rest state of the reference run, the
-//! contact forces over an ensemble of starts, and the first dip over a larger one.
+//! contact forces at rest and the first dip over ensembles of starts.
 //!
 //! How a contact's force splits into normal and shear parts at rest is not set by the statics:
 //! friction locks shear in during the bouncing transient, and which shear is chaotic in both
 //! codes (a start 1e-10 m higher changes it). One run is one sample of it, so the forces are
-//! compared as means over the same 16 starts in both codes (YADE's
-//! `sphere_on_net_ensemble.py`), and the first dip as a mean over 200 starts
-//! ([`first_dip`], YADE's `sphere_on_net_first_dip.py`).
+//! compared as means over 100 starts in both codes ([`rest_ensemble`], YADE's
+//! `sphere_on_net_rest_ensemble.py`), and the first dip as a mean over 200 starts
+//! ([`first_dip`], YADE's `sphere_on_net_first_dip.py`). The 16 starts of YADE's
+//! `sphere_on_net_ensemble.py` (the reference run among them) give the mean heights'
+//! history.
 
 mod first_dip;
 mod plots;
+mod rest_ensemble;
 mod scene;
+mod stats;
 
 use super::yade_side_by_side::{json_number, read_csv_columns, read_json, yade_data_dir};
 use crate::report::{CaseReport, Check, Context};
+use crate::runner::on_all_threads;
 use crate::ValidationError;
 use first_dip::{
     flexdem_first_dips, push_first_dip, yade_first_dips, FIRST_DIP_KS, FIRST_DIP_SHIFT,
@@ -23,6 +28,7 @@ use first_dip::{
 use flexdem_geom::{Real, Vec3};
 use plots::{plot_history, plot_mean_history, plot_rest_shape};
 use rayon::prelude::*;
+use rest_ensemble::{flexdem_rest_ensemble, push_rest_forces, yade_rest_ensemble};
 use scene::{
     rest_forces, run_net, spread, NetRun, RestForces, ENSEMBLE_KS, ENSEMBLE_SHIFT, NET_CELLS,
     NET_RADIUS, NET_SPACING, SPHERE_MASS, SPHERE_RADIUS,
@@ -65,11 +71,13 @@ pub fn run_sphere_on_net(ctx: &Context) -> Result<CaseReport, ValidationError> {
     let max_steps = number("/final/steps")? as u64;
 
     // every start, in the order of k (the reference start, k = 0, among them)
-    let runs: Vec<Result<NetRun, ValidationError>> = ENSEMBLE_KS
-        .collect::<Vec<_>>()
-        .into_par_iter()
-        .map(|k| run_net(dt, max_steps, k as Real * ENSEMBLE_SHIFT))
-        .collect();
+    let runs: Vec<Result<NetRun, ValidationError>> = on_all_threads(|| {
+        ENSEMBLE_KS
+            .collect::<Vec<_>>()
+            .into_par_iter()
+            .map(|k| run_net(dt, max_steps, k as Real * ENSEMBLE_SHIFT))
+            .collect()
+    });
     let runs = runs.into_iter().collect::<Result<Vec<_>, _>>()?;
     let forces: Vec<RestForces> = runs.iter().map(rest_forces).collect();
     let reference = (0 - ENSEMBLE_KS.start()) as usize;
@@ -133,14 +141,8 @@ pub fn run_sphere_on_net(ctx: &Context) -> Result<CaseReport, ValidationError> {
         0.01,
         "YADE 2023.02a",
     ));
-    report.checks.push(Check::relative(
-        "mean contact normal force, mean over the starts",
-        "N",
-        spread(&yade_fn_ens).0,
-        spread(&fn_ens).0,
-        0.02,
-        "YADE 2023.02a, the same starts",
-    ));
+    let (yade_rest, ours_rest) = (yade_rest_ensemble(&dir)?, flexdem_rest_ensemble(dt, max_steps)?);
+    push_rest_forces(&mut report, &yade_rest, &ours_rest);
     let (yade_dips, dips) = (yade_first_dips(&dir)?, flexdem_first_dips(dt)?);
     push_first_dip(&mut report, &yade_dips, &dips);
     report.checks.push(Check::absolute(
@@ -156,15 +158,15 @@ pub fn run_sphere_on_net(ctx: &Context) -> Result<CaseReport, ValidationError> {
         format!("mean {mean:.digits$}, {lo:.digits$} to {hi:.digits$}")
     };
     report.inform(
-        "mean contact normal force over the starts (N)",
+        "mean contact normal force over the 16 starts (N)",
         format!("flexdem {}; YADE {}", range(&fn_ens, 4), range(&yade_fn_ens, 4)),
     );
     report.inform(
-        "mean contact shear force over the starts (N)",
+        "mean contact shear force over the 16 starts (N)",
         format!("flexdem {}; YADE {}", range(&fs_ens, 4), range(&yade_fs_ens, 4)),
     );
     report.inform(
-        "lowest sphere height at the outputs over the starts (m)",
+        "lowest sphere height at the outputs over the 16 starts (m)",
         format!("flexdem {}; YADE {}", range(&low_ens, 5), range(&yade_low_ens, 5)),
     );
     report.inform(
@@ -228,8 +230,12 @@ pub fn run_sphere_on_net(ctx: &Context) -> Result<CaseReport, ValidationError> {
         1%. The split is not set by the statics: friction locks shear in while the sphere bounces \
         on the net, and which shear is chaotic in both codes: over 16 starts 1e-10 m apart YADE's \
         mean normal force per contact ranges as shown above (its reference run is one of them). \
-        So the normal force is checked as the mean over the same 16 starts in both codes, to 2% \
-        (YADE's ensemble has a spread of about 2% about its mean). The first dip, the sphere's \
+        Over those 16 starts flexdem's mean moved by 1.4% (2.6274 to 2.5910 N; YADE 2.6298 N) \
+        when the links' atan changed by one ulp (2026-12-05): 16 starts so alike are too few for \
+        2%. So the normal force is checked as the mean over 100 starts 1e-8 m apart in both \
+        codes, each run until at rest by the same criterion (YADE's \
+        `sphere_on_net_rest_ensemble.py`), to 2% (YADE's starts spread about 2% about their \
+        mean; the standard errors of both means are given above). The first dip, the sphere's \
         lowest height in its first impact, is chaotic too (a start 1e-10 m higher moves it by up \
         to 20%), so it is checked as the mean over 200 starts 1e-8 m apart in both codes \
         (YADE's `sphere_on_net_first_dip.py`), read at every step, to 5%: each mean's standard \
