@@ -16,6 +16,7 @@ pub mod plot;
 pub mod report;
 pub mod rest;
 pub mod runner;
+pub mod threads;
 
 pub use cases::{cases, Case};
 pub use error::ValidationError;

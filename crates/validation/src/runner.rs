@@ -35,17 +35,6 @@ pub fn single_threaded<T: Send>(f: impl FnOnce() -> T + Send) -> T {
     }
 }
 
-/// Runs `f` in a rayon pool of the machine's threads: for a case that runs many independent
-/// small scenes (an ensemble of starts) from inside [`single_threaded`], one scene per task.
-/// The results do not depend on the number of threads. Falls back to the current pool if a
-/// pool cannot be started.
-pub fn on_all_threads<T: Send>(f: impl FnOnce() -> T + Send) -> T {
-    match rayon::ThreadPoolBuilder::new().build() {
-        Ok(pool) => pool.install(f),
-        Err(_) => f(),
-    }
-}
-
 /// Runs `case` in `ctx`; a panic inside the case becomes [`ValidationError::Case`] so that
 /// one broken case does not stop the others.
 pub fn run_case(ctx: &Context, case: &Case) -> Result<CaseReport, ValidationError> {

@@ -12,7 +12,7 @@ use super::scene::run_net;
 use super::stats::{block_standard_error, mean, standard_deviation};
 use crate::cases::yade_side_by_side::read_csv_columns;
 use crate::report::{CaseReport, Check};
-use crate::runner::on_all_threads;
+use crate::threads::on_all_threads;
 use crate::ValidationError;
 use flexdem_geom::Real;
 use rayon::prelude::*;

@@ -19,7 +19,7 @@ mod stats;
 
 use super::yade_side_by_side::{json_number, read_csv_columns, read_json, yade_data_dir};
 use crate::report::{CaseReport, Check, Context};
-use crate::runner::on_all_threads;
+use crate::threads::on_all_threads;
 use crate::ValidationError;
 use first_dip::{
     flexdem_first_dips, push_first_dip, yade_first_dips, FIRST_DIP_KS, FIRST_DIP_SHIFT,
