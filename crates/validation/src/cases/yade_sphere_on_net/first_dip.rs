@@ -9,7 +9,7 @@
 //! were independent.
 
 use super::scene::run_net;
-use super::stats::{block_standard_error, mean, standard_deviation};
+use super::stats::{block_standard_error, describe, mean, standard_deviation};
 use crate::cases::yade_side_by_side::read_csv_columns;
 use crate::report::{CaseReport, Check};
 use crate::threads::on_all_threads;
@@ -114,19 +114,9 @@ pub(super) fn push_first_dip(report: &mut CaseReport, yade: &FirstDips, ours: &F
         0.01,
         "YADE 2023.02a, the same starts",
     ));
-    let describe = |x: &[Real]| {
-        let low = x.iter().copied().fold(Real::INFINITY, Real::min);
-        let high = x.iter().copied().fold(Real::NEG_INFINITY, Real::max);
-        format!(
-            "mean {:.6} ± {:.6} (standard error), standard deviation {:.6}, {low:.5} to {high:.5}",
-            mean(x),
-            block_standard_error(x),
-            standard_deviation(x)
-        )
-    };
     report.inform(
         &format!("first dip over {n} starts k·{FIRST_DIP_SHIFT:e} m higher (m)"),
-        format!("flexdem {}; YADE {}", describe(&ours.lowest), describe(&yade.lowest)),
+        format!("flexdem {}; YADE {}", describe(&ours.lowest, 6), describe(&yade.lowest, 6)),
     );
     let apart = (mean(&ours.lowest) - mean(&yade.lowest))
         / block_standard_error(&ours.lowest).hypot(block_standard_error(&yade.lowest));

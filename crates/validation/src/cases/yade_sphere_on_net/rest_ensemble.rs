@@ -9,7 +9,7 @@
 //! codes.
 
 use super::scene::{rest_forces, run_net, RestForces};
-use super::stats::{block_standard_error, mean, standard_deviation};
+use super::stats::{describe, mean};
 use crate::cases::yade_side_by_side::read_csv_columns;
 use crate::report::{CaseReport, Check};
 use crate::threads::on_all_threads;
@@ -91,17 +91,6 @@ pub(super) fn push_rest_forces(report: &mut CaseReport, yade: &RestEnsemble, our
         0.02,
         "YADE 2023.02a, the same starts",
     ));
-    let describe = |x: &[Real], digits: usize| {
-        let low = x.iter().copied().fold(Real::INFINITY, Real::min);
-        let high = x.iter().copied().fold(Real::NEG_INFINITY, Real::max);
-        format!(
-            "mean {:.digits$} ± {:.digits$} (standard error), standard deviation {:.digits$}, \
-             {low:.digits$} to {high:.digits$}",
-            mean(x),
-            block_standard_error(x),
-            standard_deviation(x)
-        )
-    };
     let both = |f: fn(&RestEnsemble) -> &Vec<Real>, digits: usize| {
         format!("flexdem {}; YADE {}", describe(f(ours), digits), describe(f(yade), digits))
     };

@@ -25,6 +25,20 @@ pub(super) fn block_standard_error(x: &[Real]) -> Real {
     standard_deviation(&means) / (means.len() as Real).sqrt()
 }
 
+/// `x` in words: its mean ± [`block_standard_error`], standard deviation and range, with
+/// `digits` decimals.
+pub(super) fn describe(x: &[Real], digits: usize) -> String {
+    let low = x.iter().copied().fold(Real::INFINITY, Real::min);
+    let high = x.iter().copied().fold(Real::NEG_INFINITY, Real::max);
+    format!(
+        "mean {:.digits$} ± {:.digits$} (standard error), standard deviation {:.digits$}, \
+         {low:.digits$} to {high:.digits$}",
+        mean(x),
+        block_standard_error(x),
+        standard_deviation(x)
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
