@@ -6,9 +6,10 @@
 //! are the scalar update's to the bit. Where the scalar law calls libm (a twist of 5e-3 rad
 //! or more in the step) that lane's coefficient is computed alone by the same call; a
 //! relative rotation beyond the series of `rotation_vector` takes the four lanes' atan
-//! together ([`atan_of_ratio_lanes`], the scalar `atan_of_ratio`'s operations). A lane off the path (broken or
-//! frictional, plastic, a limit reached, coincident nodes, a flipped normal, a NaN) is left
-//! untouched and reported, for the caller to update with the scalar law.
+//! together ([`atan_of_ratio_lanes`], the scalar `atan_of_ratio`'s operations). A lane off
+//! the path (broken or frictional, plastic, a limit reached, coincident nodes, a flipped
+//! normal, a NaN) is left untouched and reported, for the caller to update with the scalar
+//! law.
 //!
 //! The branches of the scalar law that the path keeps (zero shear force, no twist, a zero
 //! relative rotation, YADE's shear factor) are taken lane by lane with selects that give the

@@ -240,8 +240,9 @@ pub fn run_sphere_on_net(ctx: &Context) -> Result<CaseReport, ValidationError> {
         to 20%), so it is checked as the mean over 200 starts 1e-8 m apart in both codes \
         (YADE's `sphere_on_net_first_dip.py`), read at every step, to 5%: each mean's standard \
         error, from blocks of 10 neighbouring starts (neighbouring starts give correlated dips), \
-        is about 1.3%, so 5% is about three standard errors of their difference. Its step is \
-        checked to 1%. Until 2026-12-05 the first dip was the mean of the lowest heights at the \
+        is about 1.3%, so 5% is about 2.6 standard errors of their difference. Its step is \
+        checked to 0.25%: 15 steps, about four standard errors of the difference (the starts \
+        spread by about 21 steps). Until 2026-12-05 the first dip was the mean of the lowest heights at the \
         outputs every 1000 steps over the 16 starts 1e-10 m apart, and it failed: flexdem \
         -0.01072 m against YADE's -0.01011 m, 6%. Those 16 starts are too few and too alike \
         for 5%: read at every step over 200 starts 1e-10 m apart, the means are -0.010558 m \
