@@ -245,3 +245,76 @@ fn a_structure_with_self_contact_off_does_not_touch_itself() {
         assert_eq!(sim.contacts().len(), usize::from(on), "self_contact = {on}");
     }
 }
+
+/// Columns of sand-like spheres in a box of five walls, a net pinned at its corners lying on
+/// them: the sphere pairs of the lower layers, the walls' pairs and the net's contacts with
+/// the top layer; with more than one thread the pairs are stepped in parts, some spheres'
+/// loads summed in their part, others after (`pair_parts.rs`).
+fn columns_under_a_net() -> Simulation {
+    let (r, m, layers) = (0.005, 32, 12);
+    let pitch = 2.1 * r;
+    let mut model = Model::new();
+    let sand = model.add_material(Material::new(1e8, 0.3, 2650.0, 0.5).unwrap()).unwrap();
+    let side = m as Real * pitch;
+    let walls = [
+        (Vec3::zeros(), Vec3::z()),
+        (Vec3::zeros(), Vec3::x()),
+        (Vec3::zeros(), Vec3::y()),
+        (Vec3::new(side, side, 0.0), -Vec3::x()),
+        (Vec3::new(side, side, 0.0), -Vec3::y()),
+    ];
+    for (point, normal) in walls {
+        model.add_wall(point, normal, sand).unwrap();
+    }
+    // a fixed pattern of small offsets, so that the columns lean and collapse
+    let offset = |n: usize| ((n * 7919) % 1000) as Real / 1000.0 - 0.5;
+    for j in 0..m {
+        for i in 0..m {
+            for k in 0..layers {
+                let n = (j * m + i) * layers + k;
+                let x = (i as Real + 0.5) * pitch + 0.1 * r * offset(n);
+                let y = (j as Real + 0.5) * pitch + 0.1 * r * offset(n + 1);
+                let z = (r + 2.0 * r * k as Real) * (1.0 - 1e-5);
+                let id = model.add_sphere(Vec3::new(x, y, z), r, sand).unwrap();
+                model.particles.vel[id as usize] = Vec3::new(0.05 * offset(n + 2), 0.0, 0.0);
+            }
+        }
+    }
+    let steel = model.add_material(Material::new(2e9, 0.3, 7850.0, 0.5).unwrap()).unwrap();
+    let opts = StructureOptions::new("net", 0.002, steel);
+    let top = 2.0 * r * layers as Real + 0.002 - 1e-4;
+    let corner = Vec3::new(0.1 * side, 0.1 * side, top);
+    let s =
+        net(&mut model, corner, Vec3::x(), Vec3::y(), 0.8 * side, 0.8 * side, 8, 8, false, &opts)
+            .unwrap();
+    let grid = GridLayout::of(&model, s, 8, 8).unwrap();
+    model.block(grid.corners(), Dofs::ALL).unwrap();
+    let settings = Settings {
+        gravity: Vec3::new(0.0, 0.0, -9.81),
+        damping: 0.1,
+        time_step: TimeStep::Auto { safety: 0.5 },
+        ..Settings::default()
+    };
+    Simulation::new(model, settings).unwrap()
+}
+
+/// Spheres in a box under a net: positions, velocities and contact forces bit-identical with
+/// 1, 2 and 3 threads (the pairs stepped in one pass, in 8 parts and in 10).
+#[test]
+fn a_packing_under_a_net_does_not_depend_on_the_thread_count() {
+    let run = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+        pool.install(|| {
+            let mut sim = columns_under_a_net();
+            sim.run(300).unwrap();
+            let p = &sim.model().particles;
+            let forces: Vec<Vec3> = sim.contacts().iter().map(|c| c.forces.force_on_2).collect();
+            assert!(!forces.is_empty(), "the net touches the spheres");
+            (p.pos.clone(), p.vel.clone(), p.ang_vel.clone(), forces)
+        })
+    };
+    let one = run(1);
+    for threads in [2, 3] {
+        assert!(run(threads) == one, "{threads} threads give other results than one");
+    }
+}

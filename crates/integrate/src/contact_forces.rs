@@ -12,6 +12,7 @@ use crate::contacts::ContactPipeline;
 use crate::dashpots::dashpot_power;
 use crate::gather::{fits_codes, load_nodes, NO_NODE};
 use crate::neighbours::{merged, Pick, Sink};
+use crate::pair_parts::PARTS_PER_THREAD;
 use crate::parallel::{MIN_PARALLEL_CHEAP, MIN_PARALLEL_COSTLY};
 use flexdem_contact::update_frictional_contact;
 use flexdem_elements::virtual_sphere::{distribute_force_as, Kinematics, NodeLoad};
@@ -145,6 +146,23 @@ impl ContactPipeline {
             (g..general.len()).for_each(|n| general_loads(n).for_each(&mut add));
             return report;
         }
+        if gathered && contacts.pairs.keys().len() >= p.len() {
+            // the pairs in parts, each summing the loads of the particles it alone loads;
+            // the others' summed per particle (`pair_parts.rs`, `gather.rs`)
+            let (index, parts) = (&mut self.load_index, &mut self.pair_parts);
+            index.index_pairs(&contacts.pairs, p.len());
+            index.index_general(&self.load_nodes, p.len());
+            let count = PARTS_PER_THREAD * rayon::current_num_threads();
+            parts.split(&contacts.pairs, p.len(), count, |i| index.pair_entries(i));
+            parts.with_general(index.has_general(), |i| !index.general_entries(i).is_empty());
+            let scratch = &mut self.pairs;
+            let report =
+                contacts.pairs.update_in_parts(model, dt, scratch, ended, parts, force, torque);
+            let (list, loads) = (&contacts.list, &self.loads);
+            let sum_by = Some(parts.sum_by());
+            index.write_loads(force, torque, list, loads, &contacts.pairs, scratch, sum_by);
+            return report;
+        }
         let report = contacts.pairs.update(model, dt, &mut self.pairs, ended);
         if gathered {
             // each particle's loads in key order, in parallel over the particles (`gather.rs`)
@@ -158,6 +176,7 @@ impl ContactPipeline {
                 &self.loads,
                 &contacts.pairs,
                 &self.pairs,
+                None,
             );
             return report;
         }

@@ -14,6 +14,7 @@ use crate::contact_list::Contacts;
 use crate::dashpots::account_ended_springs;
 use crate::gather::LoadIndex;
 use crate::offsets::continued_overlap;
+use crate::pair_parts::PairParts;
 use crate::pair_passes::PairScratch;
 use crate::parallel::MAX_CHUNKS_PER_TASK;
 use crate::parallel::{MIN_PARALLEL_CHEAP, MIN_PARALLEL_COSTLY};
@@ -49,6 +50,8 @@ pub(crate) struct ContactPipeline {
     pub(crate) load_nodes: Vec<[u32; 6]>,
     /// Where each particle's loads are, for their parallel sum (`gather.rs`).
     pub(crate) load_index: LoadIndex,
+    /// The free spheres' pairs split into parts for their parallel update (`pair_parts.rs`).
+    pub(crate) pair_parts: PairParts,
     /// The links' kinematics, which say how a virtual sphere on a connection turns
     /// (`Kinematics::link_mode`).
     pub(crate) link_mode: LinkKinematicsMode,

@@ -12,6 +12,7 @@
 
 use crate::contact::Contact;
 use crate::neighbours::NeighbourList;
+use crate::pair_parts::SumBy;
 use crate::pair_passes::PairScratch;
 use crate::parallel::MAX_CHUNKS_PER_TASK;
 use flexdem_elements::virtual_sphere::{Feature, NodeLoad};
@@ -117,12 +118,15 @@ impl LoadIndex {
         counting_sort(entries, particles, &mut self.count, offsets, table);
     }
 
-    /// Writes in `force` and `torque` (one entry per particle, every one written) the sums
-    /// of the loads of the general contacts (`list`, `loads`) and of the touching candidate
-    /// pairs of `pairs` at its last parallel update (`scratch`), each particle's in key
-    /// order from +0, in parallel over the particles: what adding them to zeroed arrays gave,
-    /// bit for bit, without a pass to zero them first. The index must be up to date
-    /// ([`LoadIndex::index_pairs`], [`LoadIndex::index_general`]).
+    /// Writes in `force` and `torque` (one entry per particle) the sums of the loads of the
+    /// general contacts (`list`, `loads`) and of the touching candidate pairs of `pairs` at
+    /// its last parallel update (`scratch`), each particle's in key order from +0, in
+    /// parallel over the particles: what adding them to zeroed arrays gave, bit for bit. With
+    /// `sum_by` (the update was in parts, `pair_parts.rs`), only the particles the parts did
+    /// not sum: [`SumBy::Gather`]'s written, [`SumBy::PartThenWalls`]'s walls' loads added to
+    /// the parts' sums; without, every particle's written (no pass to zero them first). The
+    /// index must be up to date ([`LoadIndex::index_pairs`], [`LoadIndex::index_general`]).
+    #[allow(clippy::too_many_arguments, reason = "the sums, the two lists and the split")]
     pub(crate) fn write_loads(
         &self,
         force: &mut [Vec3],
@@ -131,15 +135,35 @@ impl LoadIndex {
         loads: &[[NodeLoad; 6]],
         pairs: &NeighbourList,
         scratch: &PairScratch,
+        sum_by: Option<&[SumBy]>,
     ) {
         let general_load = |code: u32| &loads[(code / 8) as usize][(code % 8) as usize];
         let view = pairs.load_view(scratch);
         let pair_load = |code: u32| view.load((code / 2) as usize, (code % 2) as usize);
+        let first_wall = pairs.keys().first_wall();
         let chunks = force.par_chunks_mut(CHUNK).zip(torque.par_chunks_mut(CHUNK)).enumerate();
         chunks.with_max_len(MAX_CHUNKS_PER_TASK).for_each(|(c, (f, t))| {
             for (k, (f, t)) in f.iter_mut().zip(t).enumerate() {
                 let i = c * CHUNK + k;
-                if range(&self.general_offsets, &self.general_entries, i).is_empty() {
+                match sum_by.map_or(SumBy::Gather, |s| s[i]) {
+                    SumBy::Part => continue,
+                    SumBy::PartThenWalls => {
+                        // the walls' pairs come last in key order: added after the part's sum
+                        let (mut fi, mut ti) = (*f, *t);
+                        let walls = self
+                            .pair_entries(i)
+                            .iter()
+                            .filter(|&&code| (code / 2) as usize >= first_wall);
+                        for l in walls.filter_map(|&code| pair_load(code)) {
+                            fi += l.force;
+                            ti += l.torque;
+                        }
+                        (*f, *t) = (fi, ti);
+                        continue;
+                    }
+                    SumBy::Gather => {}
+                }
+                if self.general_entries(i).is_empty() {
                     // no general contact on it (every particle of a granular scene): the
                     // pairs' entries alone, in their order, without the merge by key (two
                     // thirds of the gather's instructions in a packing), summed in
@@ -192,8 +216,20 @@ impl LoadIndex {
     /// Particle `i`'s entries among the candidate pairs (`2·n + side`), in pair order. The
     /// pairs' index must be up to date ([`LoadIndex::index_pairs`]).
     #[inline]
-    fn pair_entries(&self, i: usize) -> &[u32] {
+    pub(crate) fn pair_entries(&self, i: usize) -> &[u32] {
         range(&self.pair_offsets, &self.pair_entries, i)
+    }
+
+    /// Particle `i`'s entries among the general contacts' loads (`8·n + slot`), in contact
+    /// order (none when the general index is empty).
+    #[inline]
+    pub(crate) fn general_entries(&self, i: usize) -> &[u32] {
+        range(&self.general_offsets, &self.general_entries, i)
+    }
+
+    /// Whether the general contacts' index has an entry.
+    pub(crate) fn has_general(&self) -> bool {
+        !self.general_entries.is_empty()
     }
 
     /// Gives `f` particle `i`'s entries in the contacts' key order: those of the general

@@ -23,6 +23,7 @@ mod offsets;
 mod pair_book;
 mod pair_chunk;
 mod pair_keys;
+mod pair_parts;
 mod pair_passes;
 mod pair_step;
 mod pair_store;

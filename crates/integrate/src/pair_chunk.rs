@@ -26,6 +26,13 @@ use flexdem_elements::virtual_sphere::{Feature, Kinematics, NodeLoad};
 use flexdem_elements::{Model, Particles};
 use flexdem_geom::Real;
 
+/// Candidate pairs per chunk (fixed: the work is split the same way whatever the number of
+/// threads, and the sums are taken per chunk, then over the chunks in order).
+pub(crate) const PAIR_CHUNK: usize = 4096;
+
+/// A chunk holds whole blocks of the contacts' store.
+const _: () = assert!(PAIR_CHUNK % BLOCK == 0);
+
 /// One chunk of candidates and what its step reads: the keys' ids, the slots of their
 /// contacts and the blocks that hold them (the chunk's), the index of its first candidate
 /// in the list (`base`) and of the list's first wall pair.

@@ -8,21 +8,15 @@ use crate::contact::BirthReport;
 use crate::dashpots::pair_dashpot_power;
 use crate::neighbours::{AppliedForce, NeighbourList, PairContact, Sink};
 use crate::pair_book::{ChunkBook, ChunkSums};
-use crate::pair_chunk::{ChunkPass, EmitLoads};
+use crate::pair_chunk::{ChunkPass, EmitLoads, PAIR_CHUNK};
 use crate::pair_keys::ContactKey;
-use crate::pair_store::{BLOCK, NO_CONTACT};
+use crate::pair_parts::{PairParts, SumBy};
+use crate::pair_store::{BlockContacts, BLOCK, NO_CONTACT};
 use crate::parallel::MAX_CHUNKS_PER_TASK;
 use flexdem_elements::virtual_sphere::{Feature, Kinematics, NodeLoad};
 use flexdem_elements::Model;
 use flexdem_geom::{Real, Vec3};
 use rayon::prelude::*;
-
-/// Candidate pairs per chunk (fixed: the work is split the same way whatever the number of
-/// threads, and the sums are taken per chunk, then over the chunks in order).
-pub(crate) const PAIR_CHUNK: usize = 4096;
-
-/// A chunk holds whole blocks of the contacts' store.
-const _: () = assert!(PAIR_CHUNK % BLOCK == 0);
 
 /// The loads of a touching pair at the parallel update, kept for their sum (`gather.rs`):
 /// the force on body 2 (body 1's is its opposite) and the torques on the two bodies; 72
@@ -62,6 +56,52 @@ impl EmitLoads for ToOutcomes<'_> {
     fn emit(&mut self, i: usize, _: &ContactKey, loads: &[NodeLoad; 2]) {
         self.positions[i] = self.outcomes.len() as u32;
         self.outcomes.push(((self.base + i) as u32, PairLoads::of_loads(loads)));
+    }
+}
+
+/// The parts' [`EmitLoads`] (`pair_parts.rs`): the loads of a pair of two spheres on a
+/// particle its part sums (not [`SumBy::Gather`]) added to it as they come; the pair's
+/// outcome kept when the gather needs it (a wall's pair, or one side gathered).
+struct ToParts<'a> {
+    /// The part's particles, from `first_particle`.
+    force: &'a mut [Vec3],
+    torque: &'a mut [Vec3],
+    first_particle: usize,
+    sum_by: &'a [SumBy],
+    kept: ToOutcomes<'a>,
+}
+
+impl ToParts<'_> {
+    /// Adds load `l` to particle `node` (the part's: [`SumBy`] says so).
+    #[inline(always)]
+    fn add(&mut self, node: u32, l: &NodeLoad) {
+        let k = node as usize - self.first_particle;
+        self.force[k] += l.force;
+        self.torque[k] += l.torque;
+    }
+}
+
+impl EmitLoads for ToParts<'_> {
+    #[inline(always)]
+    fn emit(&mut self, i: usize, key: &ContactKey, loads: &[NodeLoad; 2]) {
+        if let (Feature::Particle(a), Feature::Particle(b)) = *key {
+            debug_assert_eq!((loads[0].node, loads[1].node), (a, b));
+            let (sum_a, sum_b) = (
+                self.sum_by[a as usize] != SumBy::Gather,
+                self.sum_by[b as usize] != SumBy::Gather,
+            );
+            // body 1's, then body 2's, as the one-thread pass adds them
+            if sum_a {
+                self.add(a, &loads[0]);
+            }
+            if sum_b {
+                self.add(b, &loads[1]);
+            }
+            if sum_a && sum_b {
+                return;
+            }
+        }
+        self.kept.emit(i, key, loads);
     }
 }
 
@@ -254,6 +294,45 @@ impl NeighbourList {
         report
     }
 
+    /// [`NeighbourList::update`] in the parts of `parts` (`pair_parts.rs`): the parts in
+    /// parallel, each one's chunks in order on one thread, which writes in `force` and
+    /// `torque` (one entry per particle) the sums of the loads on the particles it owns and
+    /// sums ([`SumBy`]; zero on the others) and keeps the outcomes the gather needs
+    /// (`gather.rs`, which sums the others). The same contacts, records and sums as `update`.
+    #[allow(clippy::too_many_arguments, reason = "update's inputs, the parts and the sums")]
+    pub(crate) fn update_in_parts(
+        &mut self,
+        model: &Model,
+        dt: Real,
+        scratch: &mut PairScratch,
+        ended_dissipation: &mut Real,
+        parts: &PairParts,
+        force: &mut [Vec3],
+        torque: &mut [Vec3],
+    ) -> BirthReport {
+        let k = Kinematics::of(&model.particles);
+        let used = self.keys.len().div_ceil(PAIR_CHUNK);
+        scratch.position.resize(self.keys.len(), 0);
+        let chunks = chunks_for(&mut scratch.chunks, self.keys.len());
+        let first_wall = self.keys.first_wall();
+        let shared =
+            PartShared { model, kinematics: &k, first_wall, dt, parts, sum_by: parts.sum_by() };
+        let inputs = PartInputs {
+            ids: self.keys.ids(),
+            slots: &mut self.slots,
+            blocks: &mut self.blocks,
+            positions: &mut scratch.position,
+            chunks,
+            force,
+            torque,
+        };
+        step_parts(&shared, 0..parts.len(), inputs);
+        let (report, total) = scratch.totals(used, ended_dissipation);
+        scratch.generation = self.generation();
+        self.sums = Some((total.elastic, total.friction));
+        report
+    }
+
     /// [`NeighbourList::update`] in one pass on this thread, giving `sink` each touching
     /// pair's key (`Sink::Before`), then its node loads (`Sink::Load`), in key order: the
     /// loads are summed as they come (no buffer), with the same results (and the records of
@@ -365,6 +444,91 @@ impl NeighbourList {
             total.friction += sums.friction;
         }
         (total.elastic, total.friction)
+    }
+}
+
+/// What every part of [`NeighbourList::update_in_parts`] reads.
+struct PartShared<'a> {
+    model: &'a Model,
+    kinematics: &'a Kinematics<'a>,
+    first_wall: usize,
+    dt: Real,
+    parts: &'a PairParts,
+    sum_by: &'a [SumBy],
+}
+
+/// What some consecutive parts write: their pairs' ids, slots, blocks, outcomes' positions
+/// and chunks, and their particles' sums.
+struct PartInputs<'a> {
+    ids: &'a [(u32, u32)],
+    slots: &'a mut [u32],
+    blocks: &'a mut [BlockContacts<PairContact>],
+    positions: &'a mut [u32],
+    chunks: &'a mut [ChunkOut],
+    force: &'a mut [Vec3],
+    torque: &'a mut [Vec3],
+}
+
+impl<'a> PartInputs<'a> {
+    /// These parts' inputs split before their `chunk`-th chunk and `particle`-th particle.
+    fn split(self, chunk: usize, particle: usize) -> (Self, Self) {
+        let pairs = (chunk * PAIR_CHUNK).min(self.ids.len());
+        let blocks = (chunk * (PAIR_CHUNK / BLOCK)).min(self.blocks.len());
+        let (ids, ids_b) = self.ids.split_at(pairs);
+        let (slots, slots_b) = self.slots.split_at_mut(pairs);
+        let (positions, positions_b) = self.positions.split_at_mut(pairs);
+        let (blocks, blocks_b) = self.blocks.split_at_mut(blocks);
+        let (chunks, chunks_b) = self.chunks.split_at_mut(chunk);
+        let (force, force_b) = self.force.split_at_mut(particle);
+        let (torque, torque_b) = self.torque.split_at_mut(particle);
+        let a = PartInputs { ids, slots, blocks, positions, chunks, force, torque };
+        let b = PartInputs {
+            ids: ids_b,
+            slots: slots_b,
+            blocks: blocks_b,
+            positions: positions_b,
+            chunks: chunks_b,
+            force: force_b,
+            torque: torque_b,
+        };
+        (a, b)
+    }
+}
+
+/// Steps `parts` (consecutive), whose inputs are `inputs`: halved, the halves in parallel.
+fn step_parts(s: &PartShared<'_>, parts: std::ops::Range<usize>, inputs: PartInputs<'_>) {
+    if parts.len() <= 1 {
+        if !parts.is_empty() {
+            step_part(s, parts.start, inputs);
+        }
+        return;
+    }
+    let (first, mid) = (parts.start, parts.start + parts.len() / 2);
+    let chunk = s.parts.chunks(mid).start - s.parts.chunks(first).start;
+    let particle = s.parts.particles(mid).start - s.parts.particles(first).start;
+    let (a, b) = inputs.split(chunk, particle);
+    rayon::join(|| step_parts(s, first..mid, a), || step_parts(s, mid..parts.end, b));
+}
+
+/// Steps part `p` (its inputs: `inputs`) on this thread: its particles' sums zeroed, then its
+/// chunks in order, each as `update` steps it, with the loads given to [`ToParts`].
+fn step_part(s: &PartShared<'_>, p: usize, inputs: PartInputs<'_>) {
+    let PartInputs { ids, slots, blocks, positions, chunks, force, torque } = inputs;
+    force.fill(Vec3::zeros());
+    torque.fill(Vec3::zeros());
+    let (first_chunk, first_particle) = (s.parts.chunks(p).start, s.parts.particles(p).start);
+    let each = ids.chunks(PAIR_CHUNK).zip(slots.chunks_mut(PAIR_CHUNK));
+    let each =
+        each.zip(blocks.chunks_mut(PAIR_CHUNK / BLOCK)).zip(positions.chunks_mut(PAIR_CHUNK));
+    for (c, ((((ids, slots), blocks), positions), out)) in each.zip(chunks).enumerate() {
+        blocks.iter_mut().zip(slots.chunks_mut(BLOCK)).for_each(|(b, s)| b.tidy(s));
+        let base = (first_chunk + c) * PAIR_CHUNK;
+        let (model, kinematics, first_wall, dt) = (s.model, s.kinematics, s.first_wall, s.dt);
+        let mut pass = ChunkPass { model, kinematics, ids, slots, blocks, base, first_wall, dt };
+        let kept = ToOutcomes { positions, outcomes: &mut out.outcomes, base };
+        let (force, torque) = (&mut *force, &mut *torque);
+        let mut to = ToParts { force, torque, first_particle, sum_by: s.sum_by, kept };
+        pass.step(&mut out.book, &mut to);
     }
 }
 

@@ -12,7 +12,7 @@
 //! pair step's time on that one load, and its contact stage took 7.4–9.3 ms per step where
 //! contacts laid out in key order took 5.3–5.7.
 
-/// Candidate pairs per block (the parallel chunk of `pair_passes::PAIR_CHUNK` candidates
+/// Candidate pairs per block (the parallel chunk of `pair_chunk::PAIR_CHUNK` candidates
 /// holds a whole number of blocks).
 pub(crate) const BLOCK: usize = 512;
 
