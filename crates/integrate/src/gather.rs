@@ -148,13 +148,13 @@ impl LoadIndex {
                 match sum_by.map_or(SumBy::Gather, |s| s[i]) {
                     SumBy::Part => continue,
                     SumBy::PartThenWalls => {
-                        // the walls' pairs come last in key order: added after the part's sum
+                        // the walls' pairs come last in key order: added after the part's sum;
+                        // a particle's entries are in pair order, its walls' the last ones
                         let (mut fi, mut ti) = (*f, *t);
-                        let walls = self
-                            .pair_entries(i)
-                            .iter()
-                            .filter(|&&code| (code / 2) as usize >= first_wall);
-                        for l in walls.filter_map(|&code| pair_load(code)) {
+                        let entries = self.pair_entries(i);
+                        let first =
+                            entries.partition_point(|&code| ((code / 2) as usize) < first_wall);
+                        for l in entries[first..].iter().filter_map(|&code| pair_load(code)) {
                             fi += l.force;
                             ti += l.torque;
                         }
