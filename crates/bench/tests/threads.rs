@@ -1,13 +1,24 @@
 //! Results do not depend on the number of threads when a particle's loads come from both
 //! contact lists: spheres resting on a PFacet membrane (general contacts) and on each other
 //! (the free spheres' neighbour list). With more than one thread, each particle's loads are
-//! summed in parallel, merged from the two lists by key (`gather.rs`); with one, in a single
-//! pass in key order. The two must add the same loads in the same order.
+//! summed in parallel, merged from the two lists by key (`gather.rs`), or, where the pairs
+//! are many, partly in the parts the pairs are stepped in (`pair_parts.rs`); with one, in a
+//! single pass in key order. They must add the same loads in the same order.
 
-use flexdem_bench::scenes::{membrane, MEMBRANE_CELL};
+use flexdem_bench::scenes::{
+    membrane, packing, packing_columns, MEMBRANE_CELL, PACKING_LAYERS, PACKING_RADIUS,
+};
+use flexdem_contact::Material;
+use flexdem_elements::builders::{net, GridLayout};
 use flexdem_elements::virtual_sphere::Feature;
+use flexdem_elements::{Dofs, StructureOptions};
 use flexdem_geom::{Real, Vec3};
 use flexdem_integrate::Simulation;
+
+/// `f`'s result in a pool of `threads` threads.
+fn with_threads<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T {
+    rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap().install(f)
+}
 
 /// The bench's membrane (about 2000 PFacets, one layer of spheres of one cell's diameter, 2
 /// cells apart) with two more spheres beside each, 0.99 of a cell from it along x and y: each
@@ -58,8 +69,7 @@ fn has_a_sphere_in_both_lists(sim: &Simulation) -> bool {
 #[test]
 fn mixed_contact_lists_give_the_same_results_with_one_and_two_threads() {
     let run = |threads: usize| {
-        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
-        pool.install(|| {
+        with_threads(threads, || {
             let mut sim = scene();
             let mut mixed_steps = 0;
             for _ in 0..30 {
@@ -76,4 +86,45 @@ fn mixed_contact_lists_give_the_same_results_with_one_and_two_threads() {
     assert!(one.1 == two.1, "positions differ between 1 and 2 threads");
     assert!(one.2 == two.2, "velocities differ between 1 and 2 threads");
     assert!(one.3 == two.3, "angular velocities differ between 1 and 2 threads");
+}
+
+/// The bench's packing of about 12 000 spheres (35 × 35 columns of 10 in a box of five
+/// walls: about 37 000 candidate pairs, 10 chunks) with a steel net pinned at its corners
+/// lying on the top layer: sphere pairs, walls' pairs and the net's general contacts with
+/// the top spheres, so that with more than one thread the pairs are stepped in parts and
+/// some spheres' loads are summed in their part, some after it (walls) and some by the gather
+/// (parts' borders, the net's).
+fn packing_under_a_net() -> Simulation {
+    let (mut model, settings) = packing(12_000).unwrap();
+    let side = packing_columns(12_000) as Real * 2.1 * PACKING_RADIUS;
+    let steel = model.add_material(Material::new(2e9, 0.3, 7850.0, 0.5).unwrap()).unwrap();
+    let opts = StructureOptions::new("net", 0.002, steel);
+    // the net's wires 0.1 mm into the top spheres
+    let top = 2.0 * PACKING_RADIUS * PACKING_LAYERS as Real + 0.002 - 1e-4;
+    let corner = Vec3::new(0.1 * side, 0.1 * side, top);
+    let (x, y, size) = (Vec3::x(), Vec3::y(), 0.8 * side);
+    let s = net(&mut model, corner, x, y, size, size, 8, 8, false, &opts).unwrap();
+    let grid = GridLayout::of(&model, s, 8, 8).unwrap();
+    model.block(grid.corners(), Dofs::ALL).unwrap();
+    Simulation::new(model, settings).unwrap()
+}
+
+/// Spheres in a box under a net: positions, velocities and contact forces bit-identical with
+/// 1, 2 and 3 threads (the pairs stepped in one pass, in 8 parts and in 10).
+#[test]
+fn a_packing_under_a_net_does_not_depend_on_the_thread_count() {
+    let run = |threads: usize| {
+        with_threads(threads, || {
+            let mut sim = packing_under_a_net();
+            sim.run(300).unwrap();
+            let p = &sim.model().particles;
+            let forces: Vec<Vec3> = sim.contacts().iter().map(|c| c.forces.force_on_2).collect();
+            assert!(!forces.is_empty(), "the net touches the spheres");
+            (p.pos.clone(), p.vel.clone(), p.ang_vel.clone(), forces)
+        })
+    };
+    let one = run(1);
+    for threads in [2, 3] {
+        assert!(run(threads) == one, "{threads} threads give other results than one");
+    }
 }

@@ -265,12 +265,10 @@ impl NeighbourList {
         scratch: &mut PairScratch,
         ended_dissipation: &mut Real,
     ) -> BirthReport {
-        let p = &model.particles;
-        let k = Kinematics::of(p);
-        let used = self.keys.len().div_ceil(PAIR_CHUNK);
+        let k = Kinematics::of(&model.particles);
+        let pass = PassInputs { model, kinematics: &k, first_wall: self.keys.first_wall(), dt };
         scratch.position.resize(self.keys.len(), 0);
         let chunks = chunks_for(&mut scratch.chunks, self.keys.len());
-        let first_wall = self.keys.first_wall();
         self.keys
             .ids()
             .par_chunks(PAIR_CHUNK)
@@ -281,17 +279,11 @@ impl NeighbourList {
             .enumerate()
             .with_max_len(MAX_CHUNKS_PER_TASK)
             .for_each(|(c, ((((ids, slots), blocks), positions), out))| {
-                blocks.iter_mut().zip(slots.chunks_mut(BLOCK)).for_each(|(b, s)| b.tidy(s));
                 let base = c * PAIR_CHUNK;
-                let mut pass =
-                    ChunkPass { model, kinematics: &k, ids, slots, blocks, base, first_wall, dt };
                 let mut to = ToOutcomes { positions, outcomes: &mut out.outcomes, base };
-                pass.step(&mut out.book, &mut to);
+                pass.step_chunk(c, ids, slots, blocks, &mut out.book, &mut to);
             });
-        let (report, total) = scratch.totals(used, ended_dissipation);
-        scratch.generation = self.generation();
-        self.sums = Some((total.elastic, total.friction));
-        report
+        self.finish_update(scratch, ended_dissipation)
     }
 
     /// [`NeighbourList::update`] in the parts of `parts` (`pair_parts.rs`): the parts in
@@ -311,12 +303,10 @@ impl NeighbourList {
         torque: &mut [Vec3],
     ) -> BirthReport {
         let k = Kinematics::of(&model.particles);
-        let used = self.keys.len().div_ceil(PAIR_CHUNK);
+        let pass = PassInputs { model, kinematics: &k, first_wall: self.keys.first_wall(), dt };
         scratch.position.resize(self.keys.len(), 0);
         let chunks = chunks_for(&mut scratch.chunks, self.keys.len());
-        let first_wall = self.keys.first_wall();
-        let shared =
-            PartShared { model, kinematics: &k, first_wall, dt, parts, sum_by: parts.sum_by() };
+        let shared = PartShared { pass, parts };
         let inputs = PartInputs {
             ids: self.keys.ids(),
             slots: &mut self.slots,
@@ -327,10 +317,7 @@ impl NeighbourList {
             torque,
         };
         step_parts(&shared, 0..parts.len(), inputs);
-        let (report, total) = scratch.totals(used, ended_dissipation);
-        scratch.generation = self.generation();
-        self.sums = Some((total.elastic, total.friction));
-        report
+        self.finish_update(scratch, ended_dissipation)
     }
 
     /// [`NeighbourList::update`] in one pass on this thread, giving `sink` each touching
@@ -345,20 +332,26 @@ impl NeighbourList {
         ended_dissipation: &mut Real,
         mut sink: impl FnMut(Sink<'_>),
     ) -> BirthReport {
-        let p = &model.particles;
-        let k = Kinematics::of(p);
-        let used = self.keys.len().div_ceil(PAIR_CHUNK);
+        let k = Kinematics::of(&model.particles);
+        let pass = PassInputs { model, kinematics: &k, first_wall: self.keys.first_wall(), dt };
         let chunks = chunks_for(&mut scratch.chunks, self.keys.len());
-        let first_wall = self.keys.first_wall();
-        let parts = self.keys.ids().chunks(PAIR_CHUNK).zip(self.slots.chunks_mut(PAIR_CHUNK));
-        let parts = parts.zip(self.blocks.chunks_mut(PAIR_CHUNK / BLOCK)).zip(chunks.iter_mut());
-        for (c, (((ids, slots), blocks), out)) in parts.enumerate() {
-            blocks.iter_mut().zip(slots.chunks_mut(BLOCK)).for_each(|(b, s)| b.tidy(s));
-            let base = c * PAIR_CHUNK;
-            let mut pass =
-                ChunkPass { model, kinematics: &k, ids, slots, blocks, base, first_wall, dt };
-            pass.step(&mut out.book, &mut ToSink(&mut sink));
+        let each = self.keys.ids().chunks(PAIR_CHUNK).zip(self.slots.chunks_mut(PAIR_CHUNK));
+        let each = each.zip(self.blocks.chunks_mut(PAIR_CHUNK / BLOCK)).zip(chunks.iter_mut());
+        for (c, (((ids, slots), blocks), out)) in each.enumerate() {
+            pass.step_chunk(c, ids, slots, blocks, &mut out.book, &mut ToSink(&mut sink));
         }
+        self.finish_update(scratch, ended_dissipation)
+    }
+
+    /// What every update ends with: the step's report and sums from the chunks' (in chunk
+    /// order, [`PairScratch::totals`]), the ended pairs' friction added to
+    /// `ended_dissipation`, and the scratch marked as this list's.
+    fn finish_update(
+        &mut self,
+        scratch: &mut PairScratch,
+        ended_dissipation: &mut Real,
+    ) -> BirthReport {
+        let used = self.keys.len().div_ceil(PAIR_CHUNK);
         let (report, total) = scratch.totals(used, ended_dissipation);
         scratch.generation = self.generation();
         self.sums = Some((total.elastic, total.friction));
@@ -447,14 +440,42 @@ impl NeighbourList {
     }
 }
 
-/// What every part of [`NeighbourList::update_in_parts`] reads.
-struct PartShared<'a> {
+/// What every chunk's step reads besides its own pairs: the model, its kinematics, the list's
+/// first wall pair and the step.
+#[derive(Clone, Copy)]
+struct PassInputs<'a> {
     model: &'a Model,
     kinematics: &'a Kinematics<'a>,
     first_wall: usize,
     dt: Real,
+}
+
+impl PassInputs<'_> {
+    /// Steps chunk `c` (its pairs' `ids`, `slots` and `blocks`), its records in `book`, its
+    /// touching pairs' loads given to `emit`: the chunk's blocks tidied, then
+    /// [`ChunkPass::step`].
+    #[inline]
+    fn step_chunk(
+        &self,
+        c: usize,
+        ids: &[(u32, u32)],
+        slots: &mut [u32],
+        blocks: &mut [BlockContacts<PairContact>],
+        book: &mut ChunkBook,
+        emit: &mut impl EmitLoads,
+    ) {
+        blocks.iter_mut().zip(slots.chunks_mut(BLOCK)).for_each(|(b, s)| b.tidy(s));
+        let Self { model, kinematics, first_wall, dt } = *self;
+        let base = c * PAIR_CHUNK;
+        let mut pass = ChunkPass { model, kinematics, ids, slots, blocks, base, first_wall, dt };
+        pass.step(book, emit);
+    }
+}
+
+/// What every part of [`NeighbourList::update_in_parts`] reads.
+struct PartShared<'a> {
+    pass: PassInputs<'a>,
     parts: &'a PairParts,
-    sum_by: &'a [SumBy],
 }
 
 /// What some consecutive parts write: their pairs' ids, slots, blocks, outcomes' positions
@@ -521,14 +542,11 @@ fn step_part(s: &PartShared<'_>, p: usize, inputs: PartInputs<'_>) {
     let each =
         each.zip(blocks.chunks_mut(PAIR_CHUNK / BLOCK)).zip(positions.chunks_mut(PAIR_CHUNK));
     for (c, ((((ids, slots), blocks), positions), out)) in each.zip(chunks).enumerate() {
-        blocks.iter_mut().zip(slots.chunks_mut(BLOCK)).for_each(|(b, s)| b.tidy(s));
-        let base = (first_chunk + c) * PAIR_CHUNK;
-        let (model, kinematics, first_wall, dt) = (s.model, s.kinematics, s.first_wall, s.dt);
-        let mut pass = ChunkPass { model, kinematics, ids, slots, blocks, base, first_wall, dt };
-        let kept = ToOutcomes { positions, outcomes: &mut out.outcomes, base };
+        let c = first_chunk + c;
+        let kept = ToOutcomes { positions, outcomes: &mut out.outcomes, base: c * PAIR_CHUNK };
         let (force, torque) = (&mut *force, &mut *torque);
-        let mut to = ToParts { force, torque, first_particle, sum_by: s.sum_by, kept };
-        pass.step(&mut out.book, &mut to);
+        let mut to = ToParts { force, torque, first_particle, sum_by: s.parts.sum_by(), kept };
+        s.pass.step_chunk(c, ids, slots, blocks, &mut out.book, &mut to);
     }
 }
 
