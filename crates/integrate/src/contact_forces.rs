@@ -147,8 +147,9 @@ impl ContactPipeline {
             return report;
         }
         if gathered && contacts.pairs.keys().len() >= p.len() {
-            // the pairs in parts, each summing the loads of the particles it alone loads;
-            // the others' summed per particle (`pair_parts.rs`, `gather.rs`)
+            // the pairs in parts, each summing the loads of the particles it alone loads and
+            // keeping the others' (`pair_parts.rs`, `part_step.rs`); those of the particles
+            // general contacts load summed per particle (`gather.rs`)
             let (index, parts) = (&mut self.load_index, &mut self.pair_parts);
             index.index_pairs(&contacts.pairs, p.len());
             index.index_general(&self.load_nodes, p.len());
@@ -158,9 +159,11 @@ impl ContactPipeline {
             let scratch = &mut self.pairs;
             let report =
                 contacts.pairs.update_in_parts(model, dt, scratch, ended, parts, force, torque);
-            let (list, loads) = (&contacts.list, &self.loads);
-            let sum_by = Some(parts.sum_by());
-            index.write_loads(force, torque, list, loads, &contacts.pairs, scratch, sum_by);
+            if index.has_general() {
+                let (list, loads) = (&contacts.list, &self.loads);
+                let sum_by = Some(parts.sum_by());
+                index.write_loads(force, torque, list, loads, &contacts.pairs, scratch, sum_by);
+            }
             return report;
         }
         let report = contacts.pairs.update(model, dt, &mut self.pairs, ended);

@@ -123,9 +123,9 @@ impl LoadIndex {
     /// its last parallel update (`scratch`), each particle's in key order from +0, in
     /// parallel over the particles: what adding them to zeroed arrays gave, bit for bit. With
     /// `sum_by` (the update was in parts, `pair_parts.rs`), only the particles the parts did
-    /// not sum: [`SumBy::Gather`]'s written, [`SumBy::PartThenWalls`]'s walls' loads added to
-    /// the parts' sums; without, every particle's written (no pass to zero them first). The
-    /// index must be up to date ([`LoadIndex::index_pairs`], [`LoadIndex::index_general`]).
+    /// not sum ([`SumBy::Gather`]); without, every particle's (no pass to zero them first).
+    /// The index must be up to date ([`LoadIndex::index_pairs`],
+    /// [`LoadIndex::index_general`]).
     #[allow(clippy::too_many_arguments, reason = "the sums, the two lists and the split")]
     pub(crate) fn write_loads(
         &self,
@@ -140,28 +140,13 @@ impl LoadIndex {
         let general_load = |code: u32| &loads[(code / 8) as usize][(code % 8) as usize];
         let view = pairs.load_view(scratch);
         let pair_load = |code: u32| view.load((code / 2) as usize, (code % 2) as usize);
-        let first_wall = pairs.keys().first_wall();
         let chunks = force.par_chunks_mut(CHUNK).zip(torque.par_chunks_mut(CHUNK)).enumerate();
         chunks.with_max_len(MAX_CHUNKS_PER_TASK).for_each(|(c, (f, t))| {
             for (k, (f, t)) in f.iter_mut().zip(t).enumerate() {
                 let i = c * CHUNK + k;
-                match sum_by.map_or(SumBy::Gather, |s| s[i]) {
-                    SumBy::Part => continue,
-                    SumBy::PartThenWalls => {
-                        // the walls' pairs come last in key order: added after the part's sum;
-                        // a particle's entries are in pair order, its walls' the last ones
-                        let (mut fi, mut ti) = (*f, *t);
-                        let entries = self.pair_entries(i);
-                        let first =
-                            entries.partition_point(|&code| ((code / 2) as usize) < first_wall);
-                        for l in entries[first..].iter().filter_map(|&code| pair_load(code)) {
-                            fi += l.force;
-                            ti += l.torque;
-                        }
-                        (*f, *t) = (fi, ti);
-                        continue;
-                    }
-                    SumBy::Gather => {}
+                if sum_by.is_some_and(|s| s[i] != SumBy::Gather) {
+                    // summed by the parts (`part_step.rs`)
+                    continue;
                 }
                 if self.general_entries(i).is_empty() {
                     // no general contact on it (every particle of a granular scene): the

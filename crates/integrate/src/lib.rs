@@ -28,6 +28,7 @@ mod pair_passes;
 mod pair_step;
 mod pair_store;
 mod parallel;
+mod part_step;
 mod pipeline;
 mod prefilter;
 mod pressure;

@@ -2,16 +2,20 @@
 //! of whole chunks of pairs, stepped on one thread in key order, and owning the particles
 //! from the first sphere of its first pair to the first of the next part's. A particle whose
 //! loads all come from pairs of two spheres of its owner's part has them summed there as
-//! they come, as the one-thread pass sums them: from zero, in key order. The others are
-//! summed afterwards from the index (`gather.rs`): those with loads from more than one part
-//! or from general contacts from zero over all their entries, and those whose only other
-//! loads are walls' (whose pairs come last in key order, after every pair of two spheres)
-//! by adding the walls' loads to the part's sum. Every particle's sum is the same additions
-//! in the same order whatever the split, so the split may follow the thread count.
+//! they come, as the one-thread pass sums them: from zero, in key order. The parts keep the
+//! loads on the other particles, in pair order, in lists by the particle's owner
+//! (`part_step.rs`); once all are done, each owner's lists are added in part order, which is
+//! key order: after the part's sum for a particle whose only other loads are walls' (whose
+//! pairs come last in key order, after every pair of two spheres), onto zero for one loaded
+//! from several parts. A particle that a general contact loads is summed from zero over all
+//! its entries from the index (`gather.rs`). Every particle's sum is the same additions in the
+//! same order whatever the split, so the split may follow the thread count.
 //!
 //! With two parts of a packing of 10⁵ spheres in Morton order, 1 % of the spheres get loads
 //! from both parts and 14 % touch a wall: the gather of every particle's loads, which the
-//! one-thread pass does not need, took 14 % of a two-thread step.
+//! one-thread pass does not need, took 14 % of a two-thread step. With 8 parts, 7 % get
+//! loads from several parts; gathered from the index (three scattered reads per load), they
+//! and the walls' loads took 8 % of the step.
 
 use crate::neighbours::NeighbourList;
 use crate::pair_chunk::PAIR_CHUNK;
@@ -22,9 +26,12 @@ use flexdem_elements::virtual_sphere::Feature;
 pub(crate) enum SumBy {
     /// Every load comes from pairs of two spheres of the part that owns it: summed there.
     Part,
-    /// As [`SumBy::Part`], then its walls' loads added by the gather.
+    /// As [`SumBy::Part`], then its walls' loads, kept by their parts, added.
     PartThenWalls,
-    /// Loads from more than one part, or from a general contact: summed by the gather.
+    /// Loads from more than one part: each part keeps its loads on it, added in part order
+    /// onto zero.
+    Deferred,
+    /// Loaded by a general contact: summed by the gather from the index.
     Gather,
 }
 
@@ -127,7 +134,7 @@ impl PairParts {
                 if n >= first_wall {
                     walls = true;
                 } else if part_of_pair(n) != owner {
-                    return SumBy::Gather;
+                    return SumBy::Deferred;
                 }
             }
             if walls {
@@ -179,11 +186,18 @@ impl PairParts {
     pub(crate) fn particles(&self, p: usize) -> std::ops::Range<usize> {
         self.first_particle[p]..self.first_particle[p + 1]
     }
+
+    /// The part that owns particle `i` (below the particle count): the last whose first
+    /// particle is at most `i` (a part that owns none starts where the next does).
+    #[inline]
+    pub(crate) fn owner(&self, i: usize) -> usize {
+        self.first_particle.partition_point(|&first| first <= i) - 1
+    }
 }
 
 #[cfg(test)]
 mod tests {
-    use super::{split_by_cost, PAIR_CHUNK, WALL_PAIR_COST};
+    use super::{split_by_cost, PairParts, PAIR_CHUNK, WALL_PAIR_COST};
     use proptest::prelude::*;
 
     /// The cost of chunks `a..b` of `len` pairs whose walls' start at `first_wall`.
@@ -225,5 +239,14 @@ mod tests {
         assert_eq!(first_chunk, [0, 4, 8]);
         split_by_cost(8 * PAIR_CHUNK, 4 * PAIR_CHUNK, 2, &mut first_chunk);
         assert_eq!(first_chunk, [0, 6, 8]);
+    }
+
+    /// A particle's owner is the part whose particles hold it, past parts that own none.
+    #[test]
+    fn a_particle_is_owned_by_the_part_whose_range_holds_it() {
+        let parts = PairParts { first_particle: vec![0, 3, 3, 7, 10], ..Default::default() };
+        let owners: Vec<usize> = (0..10).map(|i| parts.owner(i)).collect();
+        assert_eq!(owners, [0, 0, 0, 2, 2, 2, 2, 3, 3, 3]);
+        assert!((0..10).all(|i| parts.particles(parts.owner(i)).contains(&i)));
     }
 }

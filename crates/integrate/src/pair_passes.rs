@@ -10,9 +10,10 @@ use crate::neighbours::{AppliedForce, NeighbourList, PairContact, Sink};
 use crate::pair_book::{ChunkBook, ChunkSums};
 use crate::pair_chunk::{ChunkPass, EmitLoads, PAIR_CHUNK};
 use crate::pair_keys::ContactKey;
-use crate::pair_parts::{PairParts, SumBy};
+use crate::pair_parts::PairParts;
 use crate::pair_store::{BlockContacts, BLOCK, NO_CONTACT};
 use crate::parallel::MAX_CHUNKS_PER_TASK;
+use crate::part_step::{add_deferred, step_parts, DeferredLoad, PartInputs, PartShared};
 use flexdem_elements::virtual_sphere::{Feature, Kinematics, NodeLoad};
 use flexdem_elements::Model;
 use flexdem_geom::{Real, Vec3};
@@ -45,10 +46,10 @@ impl PairLoads {
 
 /// The parallel update's [`EmitLoads`]: each touching pair's loads kept in its chunk's
 /// outcomes, and where, for their sum per particle (`gather.rs`).
-struct ToOutcomes<'a> {
-    positions: &'a mut [u32],
-    outcomes: &'a mut Vec<(u32, PairLoads)>,
-    base: usize,
+pub(crate) struct ToOutcomes<'a> {
+    pub(crate) positions: &'a mut [u32],
+    pub(crate) outcomes: &'a mut Vec<(u32, PairLoads)>,
+    pub(crate) base: usize,
 }
 
 impl EmitLoads for ToOutcomes<'_> {
@@ -56,52 +57,6 @@ impl EmitLoads for ToOutcomes<'_> {
     fn emit(&mut self, i: usize, _: &ContactKey, loads: &[NodeLoad; 2]) {
         self.positions[i] = self.outcomes.len() as u32;
         self.outcomes.push(((self.base + i) as u32, PairLoads::of_loads(loads)));
-    }
-}
-
-/// The parts' [`EmitLoads`] (`pair_parts.rs`): the loads of a pair of two spheres on a
-/// particle its part sums (not [`SumBy::Gather`]) added to it as they come; the pair's
-/// outcome kept when the gather needs it (a wall's pair, or one side gathered).
-struct ToParts<'a> {
-    /// The part's particles, from `first_particle`.
-    force: &'a mut [Vec3],
-    torque: &'a mut [Vec3],
-    first_particle: usize,
-    sum_by: &'a [SumBy],
-    kept: ToOutcomes<'a>,
-}
-
-impl ToParts<'_> {
-    /// Adds load `l` to particle `node` (the part's: [`SumBy`] says so).
-    #[inline(always)]
-    fn add(&mut self, node: u32, l: &NodeLoad) {
-        let k = node as usize - self.first_particle;
-        self.force[k] += l.force;
-        self.torque[k] += l.torque;
-    }
-}
-
-impl EmitLoads for ToParts<'_> {
-    #[inline(always)]
-    fn emit(&mut self, i: usize, key: &ContactKey, loads: &[NodeLoad; 2]) {
-        if let (Feature::Particle(a), Feature::Particle(b)) = *key {
-            debug_assert_eq!((loads[0].node, loads[1].node), (a, b));
-            let (sum_a, sum_b) = (
-                self.sum_by[a as usize] != SumBy::Gather,
-                self.sum_by[b as usize] != SumBy::Gather,
-            );
-            // body 1's, then body 2's, as the one-thread pass adds them
-            if sum_a {
-                self.add(a, &loads[0]);
-            }
-            if sum_b {
-                self.add(b, &loads[1]);
-            }
-            if sum_a && sum_b {
-                return;
-            }
-        }
-        self.kept.emit(i, key, loads);
     }
 }
 
@@ -143,12 +98,12 @@ impl PairLoadView<'_> {
 
 /// One chunk's part of the last update.
 #[derive(Clone, Debug, Default)]
-struct ChunkOut {
+pub(crate) struct ChunkOut {
     /// The loads of its pairs that touch after the update, with their index, in order (the
     /// parallel update only).
-    outcomes: Vec<(u32, PairLoads)>,
+    pub(crate) outcomes: Vec<(u32, PairLoads)>,
     /// What its pairs added to the step's records.
-    book: ChunkBook,
+    pub(crate) book: ChunkBook,
 }
 
 /// Buffers of [`NeighbourList::update`] (nothing here is saved).
@@ -164,6 +119,9 @@ pub(crate) struct PairScratch {
     /// The generation of the candidates of the last update (`NeighbourList::generation`;
     /// 0 before any): its records are theirs.
     generation: u64,
+    /// The loads the parts kept for the particles they do not sum at the last update in
+    /// parts (`part_step.rs`): part `q`'s for the particles of part `o` at `q·parts + o`.
+    deferred: Vec<Vec<DeferredLoad>>,
 }
 
 /// What the last update of a neighbour list gave besides its contacts' states, for the
@@ -286,11 +244,12 @@ impl NeighbourList {
         self.finish_update(scratch, ended_dissipation)
     }
 
-    /// [`NeighbourList::update`] in the parts of `parts` (`pair_parts.rs`): the parts in
-    /// parallel, each one's chunks in order on one thread, which writes in `force` and
-    /// `torque` (one entry per particle) the sums of the loads on the particles it owns and
-    /// sums ([`SumBy`]; zero on the others) and keeps the outcomes the gather needs
-    /// (`gather.rs`, which sums the others). The same contacts, records and sums as `update`.
+    /// [`NeighbourList::update`] in the parts of `parts` (`pair_parts.rs`, `part_step.rs`):
+    /// the parts in parallel, each one's chunks in order on one thread, then the loads they
+    /// kept added. Writes in `force` and `torque` (one entry per particle) the sum of every
+    /// particle's pair loads in key order, except those the gather sums (`gather.rs`,
+    /// [`SumBy::Gather`](crate::pair_parts::SumBy), zero here), whose pairs' outcomes it
+    /// keeps. The same contacts, records and sums as `update`.
     #[allow(clippy::too_many_arguments, reason = "update's inputs, the parts and the sums")]
     pub(crate) fn update_in_parts(
         &mut self,
@@ -306,6 +265,10 @@ impl NeighbourList {
         let pass = PassInputs { model, kinematics: &k, first_wall: self.keys.first_wall(), dt };
         scratch.position.resize(self.keys.len(), 0);
         let chunks = chunks_for(&mut scratch.chunks, self.keys.len());
+        let lists = parts.len() * parts.len();
+        if scratch.deferred.len() != lists {
+            scratch.deferred.resize_with(lists, Vec::new);
+        }
         let shared = PartShared { pass, parts };
         let inputs = PartInputs {
             ids: self.keys.ids(),
@@ -313,10 +276,13 @@ impl NeighbourList {
             blocks: &mut self.blocks,
             positions: &mut scratch.position,
             chunks,
-            force,
-            torque,
+            force: &mut *force,
+            torque: &mut *torque,
+            deferred: &mut scratch.deferred,
         };
         step_parts(&shared, 0..parts.len(), inputs);
+        add_deferred(parts, force, torque, &scratch.deferred);
+        scratch.deferred.iter_mut().for_each(trim);
         self.finish_update(scratch, ended_dissipation)
     }
 
@@ -443,7 +409,7 @@ impl NeighbourList {
 /// What every chunk's step reads besides its own pairs: the model, its kinematics, the list's
 /// first wall pair and the step.
 #[derive(Clone, Copy)]
-struct PassInputs<'a> {
+pub(crate) struct PassInputs<'a> {
     model: &'a Model,
     kinematics: &'a Kinematics<'a>,
     first_wall: usize,
@@ -455,7 +421,7 @@ impl PassInputs<'_> {
     /// touching pairs' loads given to `emit`: the chunk's blocks tidied, then
     /// [`ChunkPass::step`].
     #[inline]
-    fn step_chunk(
+    pub(crate) fn step_chunk(
         &self,
         c: usize,
         ids: &[(u32, u32)],
@@ -469,84 +435,6 @@ impl PassInputs<'_> {
         let base = c * PAIR_CHUNK;
         let mut pass = ChunkPass { model, kinematics, ids, slots, blocks, base, first_wall, dt };
         pass.step(book, emit);
-    }
-}
-
-/// What every part of [`NeighbourList::update_in_parts`] reads.
-struct PartShared<'a> {
-    pass: PassInputs<'a>,
-    parts: &'a PairParts,
-}
-
-/// What some consecutive parts write: their pairs' ids, slots, blocks, outcomes' positions
-/// and chunks, and their particles' sums.
-struct PartInputs<'a> {
-    ids: &'a [(u32, u32)],
-    slots: &'a mut [u32],
-    blocks: &'a mut [BlockContacts<PairContact>],
-    positions: &'a mut [u32],
-    chunks: &'a mut [ChunkOut],
-    force: &'a mut [Vec3],
-    torque: &'a mut [Vec3],
-}
-
-impl<'a> PartInputs<'a> {
-    /// These parts' inputs split before their `chunk`-th chunk and `particle`-th particle.
-    fn split(self, chunk: usize, particle: usize) -> (Self, Self) {
-        let pairs = (chunk * PAIR_CHUNK).min(self.ids.len());
-        let blocks = (chunk * (PAIR_CHUNK / BLOCK)).min(self.blocks.len());
-        let (ids, ids_b) = self.ids.split_at(pairs);
-        let (slots, slots_b) = self.slots.split_at_mut(pairs);
-        let (positions, positions_b) = self.positions.split_at_mut(pairs);
-        let (blocks, blocks_b) = self.blocks.split_at_mut(blocks);
-        let (chunks, chunks_b) = self.chunks.split_at_mut(chunk);
-        let (force, force_b) = self.force.split_at_mut(particle);
-        let (torque, torque_b) = self.torque.split_at_mut(particle);
-        let a = PartInputs { ids, slots, blocks, positions, chunks, force, torque };
-        let b = PartInputs {
-            ids: ids_b,
-            slots: slots_b,
-            blocks: blocks_b,
-            positions: positions_b,
-            chunks: chunks_b,
-            force: force_b,
-            torque: torque_b,
-        };
-        (a, b)
-    }
-}
-
-/// Steps `parts` (consecutive), whose inputs are `inputs`: halved, the halves in parallel.
-fn step_parts(s: &PartShared<'_>, parts: std::ops::Range<usize>, inputs: PartInputs<'_>) {
-    if parts.len() <= 1 {
-        if !parts.is_empty() {
-            step_part(s, parts.start, inputs);
-        }
-        return;
-    }
-    let (first, mid) = (parts.start, parts.start + parts.len() / 2);
-    let chunk = s.parts.chunks(mid).start - s.parts.chunks(first).start;
-    let particle = s.parts.particles(mid).start - s.parts.particles(first).start;
-    let (a, b) = inputs.split(chunk, particle);
-    rayon::join(|| step_parts(s, first..mid, a), || step_parts(s, mid..parts.end, b));
-}
-
-/// Steps part `p` (its inputs: `inputs`) on this thread: its particles' sums zeroed, then its
-/// chunks in order, each as `update` steps it, with the loads given to [`ToParts`].
-fn step_part(s: &PartShared<'_>, p: usize, inputs: PartInputs<'_>) {
-    let PartInputs { ids, slots, blocks, positions, chunks, force, torque } = inputs;
-    force.fill(Vec3::zeros());
-    torque.fill(Vec3::zeros());
-    let (first_chunk, first_particle) = (s.parts.chunks(p).start, s.parts.particles(p).start);
-    let each = ids.chunks(PAIR_CHUNK).zip(slots.chunks_mut(PAIR_CHUNK));
-    let each =
-        each.zip(blocks.chunks_mut(PAIR_CHUNK / BLOCK)).zip(positions.chunks_mut(PAIR_CHUNK));
-    for (c, ((((ids, slots), blocks), positions), out)) in each.zip(chunks).enumerate() {
-        let c = first_chunk + c;
-        let kept = ToOutcomes { positions, outcomes: &mut out.outcomes, base: c * PAIR_CHUNK };
-        let (force, torque) = (&mut *force, &mut *torque);
-        let mut to = ToParts { force, torque, first_particle, sum_by: s.parts.sum_by(), kept };
-        s.pass.step_chunk(c, ids, slots, blocks, &mut out.book, &mut to);
     }
 }
 

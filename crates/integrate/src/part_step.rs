@@ -1,0 +1,226 @@
+//! The step of the candidate pairs in parts (`pair_parts.rs`,
+//! `NeighbourList::update_in_parts`): the parts in parallel, each one's chunks in order on
+//! one thread, which sums the loads on the particles it owns and sums ([`SumBy::Part`], and
+//! [`SumBy::PartThenWalls`] but for its walls) as they come and keeps the others' loads, in pair order, in one list per owner part
+//! ([`DeferredLoad`]); then, in parallel over the owners, each owner's lists added to its
+//! particles in part order ([`add_deferred`]). Per particle that is every load in key order:
+//! the part's sum first for one that sums in its part (its other loads are walls', whose
+//! pairs come last), from zero for the others.
+
+use crate::neighbours::PairContact;
+use crate::pair_chunk::{EmitLoads, PAIR_CHUNK};
+use crate::pair_keys::ContactKey;
+use crate::pair_parts::{PairParts, SumBy};
+use crate::pair_passes::{ChunkOut, PassInputs, ToOutcomes};
+use crate::pair_store::{BlockContacts, BLOCK};
+use flexdem_elements::virtual_sphere::{Feature, NodeLoad};
+use flexdem_geom::Vec3;
+
+/// A load that a part keeps for a particle it does not sum (56 bytes).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct DeferredLoad {
+    particle: u32,
+    force: Vec3,
+    torque: Vec3,
+}
+
+/// The parts' [`EmitLoads`]: the loads of a pair on a particle its part sums added to it as
+/// they come, on one summed after the parts
+/// ([`SumBy::PartThenWalls`]'s walls' loads, [`SumBy::Deferred`]'s) kept in the list of the
+/// particle's owner, and the whole pair's outcome kept when the gather sums one of its
+/// particles ([`SumBy::Gather`]).
+struct ToParts<'a> {
+    /// The part's particles, from `first_particle`.
+    force: &'a mut [Vec3],
+    torque: &'a mut [Vec3],
+    first_particle: usize,
+    parts: &'a PairParts,
+    /// The part's lists, one per owner part.
+    deferred: &'a mut [Vec<DeferredLoad>],
+    kept: ToOutcomes<'a>,
+}
+
+impl ToParts<'_> {
+    /// Load `l` of particle `node`, summed as `by` says (the gather's: nothing here).
+    #[inline(always)]
+    fn take(&mut self, node: u32, by: SumBy, l: &NodeLoad) {
+        match by {
+            SumBy::Part => {
+                let k = node as usize - self.first_particle;
+                self.force[k] += l.force;
+                self.torque[k] += l.torque;
+            }
+            SumBy::PartThenWalls | SumBy::Deferred => {
+                let owner = self.parts.owner(node as usize);
+                let load = DeferredLoad { particle: node, force: l.force, torque: l.torque };
+                self.deferred[owner].push(load);
+            }
+            SumBy::Gather => {}
+        }
+    }
+}
+
+impl EmitLoads for ToParts<'_> {
+    #[inline(always)]
+    fn emit(&mut self, i: usize, key: &ContactKey, loads: &[NodeLoad; 2]) {
+        let sum_by = self.parts.sum_by();
+        match *key {
+            (Feature::Particle(a), Feature::Particle(b)) => {
+                debug_assert_eq!((loads[0].node, loads[1].node), (a, b));
+                let by = [sum_by[a as usize], sum_by[b as usize]];
+                // (a PartThenWalls particle's loads from pairs of two spheres are its
+                // part's: only its walls' are kept)
+                let by = by.map(|s| if s == SumBy::PartThenWalls { SumBy::Part } else { s });
+                // body 1's, then body 2's, as the one-thread pass adds them
+                self.take(a, by[0], &loads[0]);
+                self.take(b, by[1], &loads[1]);
+                if by.contains(&SumBy::Gather) {
+                    self.kept.emit(i, key, loads);
+                }
+            }
+            (Feature::Wall(_), Feature::Particle(b)) => {
+                debug_assert_eq!(loads[1].node, b);
+                let by = sum_by[b as usize];
+                debug_assert!(by != SumBy::Part, "a particle that touches a wall");
+                self.take(b, by, &loads[1]);
+                if by == SumBy::Gather {
+                    self.kept.emit(i, key, loads);
+                }
+            }
+            _ => self.kept.emit(i, key, loads),
+        }
+    }
+}
+
+/// What every part reads.
+pub(crate) struct PartShared<'a> {
+    pub(crate) pass: PassInputs<'a>,
+    pub(crate) parts: &'a PairParts,
+}
+
+/// What some consecutive parts write: their pairs' ids, slots, blocks, outcomes' positions
+/// and chunks, their particles' sums and their lists of kept loads (one per owner part for
+/// each of these parts).
+pub(crate) struct PartInputs<'a> {
+    pub(crate) ids: &'a [(u32, u32)],
+    pub(crate) slots: &'a mut [u32],
+    pub(crate) blocks: &'a mut [BlockContacts<PairContact>],
+    pub(crate) positions: &'a mut [u32],
+    pub(crate) chunks: &'a mut [ChunkOut],
+    pub(crate) force: &'a mut [Vec3],
+    pub(crate) torque: &'a mut [Vec3],
+    pub(crate) deferred: &'a mut [Vec<DeferredLoad>],
+}
+
+impl PartInputs<'_> {
+    /// These parts' inputs split before their `chunk`-th chunk, `particle`-th particle and
+    /// `part`-th part (of `parts` in all).
+    fn split(self, chunk: usize, particle: usize, part: usize, parts: usize) -> (Self, Self) {
+        let pairs = (chunk * PAIR_CHUNK).min(self.ids.len());
+        let blocks = (chunk * (PAIR_CHUNK / BLOCK)).min(self.blocks.len());
+        let (ids, ids_b) = self.ids.split_at(pairs);
+        let (slots, slots_b) = self.slots.split_at_mut(pairs);
+        let (positions, positions_b) = self.positions.split_at_mut(pairs);
+        let (blocks, blocks_b) = self.blocks.split_at_mut(blocks);
+        let (chunks, chunks_b) = self.chunks.split_at_mut(chunk);
+        let (force, force_b) = self.force.split_at_mut(particle);
+        let (torque, torque_b) = self.torque.split_at_mut(particle);
+        let (deferred, deferred_b) = self.deferred.split_at_mut(part * parts);
+        let a = PartInputs { ids, slots, blocks, positions, chunks, force, torque, deferred };
+        let b = PartInputs {
+            ids: ids_b,
+            slots: slots_b,
+            blocks: blocks_b,
+            positions: positions_b,
+            chunks: chunks_b,
+            force: force_b,
+            torque: torque_b,
+            deferred: deferred_b,
+        };
+        (a, b)
+    }
+}
+
+/// Steps `parts` (consecutive), whose inputs are `inputs`: halved, the halves in parallel.
+pub(crate) fn step_parts(
+    s: &PartShared<'_>,
+    parts: std::ops::Range<usize>,
+    inputs: PartInputs<'_>,
+) {
+    if parts.len() <= 1 {
+        if !parts.is_empty() {
+            step_part(s, parts.start, inputs);
+        }
+        return;
+    }
+    let (first, mid) = (parts.start, parts.start + parts.len() / 2);
+    let chunk = s.parts.chunks(mid).start - s.parts.chunks(first).start;
+    let particle = s.parts.particles(mid).start - s.parts.particles(first).start;
+    let (a, b) = inputs.split(chunk, particle, mid - first, s.parts.len());
+    rayon::join(|| step_parts(s, first..mid, a), || step_parts(s, mid..parts.end, b));
+}
+
+/// Steps part `p` (its inputs: `inputs`) on this thread: its particles' sums zeroed and its
+/// lists emptied, then its chunks in order, each as `update` steps it, with the loads given
+/// to [`ToParts`].
+fn step_part(s: &PartShared<'_>, p: usize, inputs: PartInputs<'_>) {
+    let PartInputs { ids, slots, blocks, positions, chunks, force, torque, deferred } = inputs;
+    force.fill(Vec3::zeros());
+    torque.fill(Vec3::zeros());
+    deferred.iter_mut().for_each(Vec::clear);
+    let (first_chunk, first_particle) = (s.parts.chunks(p).start, s.parts.particles(p).start);
+    let each = ids.chunks(PAIR_CHUNK).zip(slots.chunks_mut(PAIR_CHUNK));
+    let each =
+        each.zip(blocks.chunks_mut(PAIR_CHUNK / BLOCK)).zip(positions.chunks_mut(PAIR_CHUNK));
+    for (c, ((((ids, slots), blocks), positions), out)) in each.zip(chunks).enumerate() {
+        let c = first_chunk + c;
+        let kept = ToOutcomes { positions, outcomes: &mut out.outcomes, base: c * PAIR_CHUNK };
+        let (force, torque, deferred) = (&mut *force, &mut *torque, &mut *deferred);
+        let parts = s.parts;
+        let mut to = ToParts { force, torque, first_particle, parts, deferred, kept };
+        s.pass.step_chunk(c, ids, slots, blocks, &mut out.book, &mut to);
+    }
+}
+
+/// Adds to `force` and `torque` (one entry per particle) the loads the parts kept
+/// (`deferred`: part `q`'s list for owner `o` at `q·parts + o`), in parallel over the owner
+/// parts, each owner's lists in part order, each list in its order: the loads in key order.
+pub(crate) fn add_deferred(
+    parts: &PairParts,
+    force: &mut [Vec3],
+    torque: &mut [Vec3],
+    deferred: &[Vec<DeferredLoad>],
+) {
+    add_owners(parts, 0..parts.len(), force, torque, deferred);
+}
+
+/// [`add_deferred`] for owners `owners` (consecutive), whose particles' sums are `force` and
+/// `torque`: halved, the halves in parallel.
+fn add_owners(
+    parts: &PairParts,
+    owners: std::ops::Range<usize>,
+    force: &mut [Vec3],
+    torque: &mut [Vec3],
+    deferred: &[Vec<DeferredLoad>],
+) {
+    if owners.len() > 1 {
+        let (first, mid) = (owners.start, owners.start + owners.len() / 2);
+        let at = parts.particles(mid).start - parts.particles(first).start;
+        let (force, force_b) = force.split_at_mut(at);
+        let (torque, torque_b) = torque.split_at_mut(at);
+        rayon::join(
+            || add_owners(parts, first..mid, force, torque, deferred),
+            || add_owners(parts, mid..owners.end, force_b, torque_b, deferred),
+        );
+        return;
+    }
+    let Some(o) = owners.clone().next() else { return };
+    let first_particle = parts.particles(o).start;
+    for q in 0..parts.len() {
+        for l in &deferred[q * parts.len() + o] {
+            let k = l.particle as usize - first_particle;
+            force[k] += l.force;
+            torque[k] += l.torque;
+        }
+    }
+}
