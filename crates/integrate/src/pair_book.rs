@@ -2,7 +2,9 @@
 //! and sums (`ChunkSums`), in pair order: written by the chunk's pass (`pair_chunk.rs`),
 //! read by both passes over the chunks (`pair_passes.rs`).
 
+use crate::dashpots::FactorMemo;
 use crate::neighbours::{AppliedForce, PairContact, PairOutcome, Pushed};
+use crate::stiffness_sums::PairShares;
 use flexdem_geom::Real;
 
 /// What the pairs of one chunk added to the step's sums, each in pair order (from +0 for the
@@ -64,6 +66,10 @@ impl ChunkSums {
 pub(crate) struct ChunkBook {
     /// The pairs that started touching.
     pub(crate) fresh: Vec<usize>,
+    /// Their nodes' shares of their stiffness, for the time step (`stiffness_sums::add_fresh`).
+    pub(crate) fresh_shares: Vec<PairShares>,
+    /// The last damping factors the shares asked for (nothing saved).
+    pub(crate) memo: [FactorMemo; 2],
     /// The touching pairs whose dashpots pushed, in key order: what `dashpot_dissipation`
     /// needs, gathered while each contact was at hand.
     pub(crate) pushed: Vec<Pushed>,

@@ -18,6 +18,7 @@ use crate::pair_book::ChunkBook;
 use crate::pair_keys::{key_at, ContactKey};
 use crate::pair_step::{continuing_pair, first_not_apart, step_pair, wall_apart};
 use crate::pair_store::{BlockContacts, BLOCK, NO_CONTACT};
+use crate::stiffness_sums::PairShares;
 use flexdem_contact::frictional_lanes::{
     update_sphere_pair_lanes, update_wall_sphere_lanes, ContactLanesOut, SpherePairLanes,
     WallSphereLanes, LANES,
@@ -280,6 +281,12 @@ fn general_step(
     step_pair(model, k, key, slot, block, dt, &mut o, &mut law);
     let elastic = law.elastic;
     book.record(n, &o, block.get(*slot), elastic);
+    if o.fresh {
+        // its stiffness for the time step, while its contact and particles are at hand
+        let c = block.get(*slot).expect("a new pair's contact");
+        let shares = PairShares::of(model, key, &c.params, &c.state.normal, &mut book.memo);
+        book.fresh_shares.push(shares);
+    }
     let touches = *slot != NO_CONTACT;
     if touches && matches!(key.0, Feature::Wall(_)) {
         book.walls.push((n as u32, o.applied));

@@ -14,6 +14,7 @@ use crate::pair_parts::PairParts;
 use crate::pair_store::{BlockContacts, BLOCK, NO_CONTACT};
 use crate::parallel::MAX_CHUNKS_PER_TASK;
 use crate::part_step::{add_deferred, step_parts, DeferredLoad, PartInputs, PartShared};
+use crate::stiffness_sums::PairShares;
 use flexdem_elements::virtual_sphere::{Feature, Kinematics, NodeLoad};
 use flexdem_elements::Model;
 use flexdem_geom::{Real, Vec3};
@@ -113,6 +114,8 @@ pub(crate) struct PairScratch {
     chunks: Vec<ChunkOut>,
     /// Indices of the pairs that started touching at the last update.
     pub(crate) fresh: Vec<usize>,
+    /// Their nodes' shares of their stiffness, in the same order.
+    pub(crate) fresh_shares: Vec<PairShares>,
     /// Per candidate pair, where its outcome is in its chunk's list at the last parallel
     /// update (written for the pairs it stepped only).
     position: Vec<u32>,
@@ -155,12 +158,15 @@ impl LastUpdate<'_> {
 }
 
 /// Gives back a buffer's room when it is more than four times its contents (and more than
-/// 2048 places), down to twice (at least 1024): buffers kept from step to step (no allocation in a steady
-/// run) also keep the room of a step unlike the others. The first step of a packing makes
-/// all its contacts at once, and the lists of fresh pairs held 26 bytes per sphere for
-/// the rest of the run.
+/// 4 KiB), down to twice (at least 2 KiB's worth of places: 512 of `u32`): buffers kept
+/// from step to step (no allocation in a steady run) also keep the room of a step unlike
+/// the others. The first step of a packing makes all its contacts at once, and the lists of
+/// fresh pairs held 26 bytes per sphere for the rest of the run (with a floor of 1024 places
+/// whatever their size, the new pairs' stiffness shares, 152 bytes each, kept 220 bytes per
+/// sphere of the packing of 10⁵ spheres in its 75 chunks).
 fn trim<T>(buffer: &mut Vec<T>) {
-    let room = 2 * buffer.len().max(512);
+    let floor = (2048 / std::mem::size_of::<T>().max(1)).max(1);
+    let room = 2 * buffer.len().max(floor);
     if buffer.capacity() > 2 * room {
         buffer.shrink_to(room);
     }
@@ -175,6 +181,7 @@ fn chunks_for(chunks: &mut Vec<ChunkOut>, candidates: usize) -> &mut [ChunkOut] 
     for c in &mut chunks[..used] {
         c.outcomes.clear();
         c.book.fresh.clear();
+        c.book.fresh_shares.clear();
         c.book.pushed.clear();
         c.book.walls.clear();
         c.book.sums = ChunkSums::default();
@@ -188,15 +195,19 @@ impl PairScratch {
     fn totals(&mut self, used: usize, ended_dissipation: &mut Real) -> (BirthReport, ChunkSums) {
         let mut total = ChunkSums::default();
         self.fresh.clear();
+        self.fresh_shares.clear();
         for c in &mut self.chunks[..used] {
             c.book.sums.add_to(&mut total);
             self.fresh.extend_from_slice(&c.book.fresh);
+            self.fresh_shares.extend_from_slice(&c.book.fresh_shares);
             trim(&mut c.book.fresh);
+            trim(&mut c.book.fresh_shares);
             trim(&mut c.book.pushed);
             trim(&mut c.book.walls);
             trim(&mut c.outcomes);
         }
         trim(&mut self.fresh);
+        trim(&mut self.fresh_shares);
         *ended_dissipation += total.ended_dissipation;
         let report = BirthReport {
             born_deep: total.born_deep,
@@ -454,9 +465,13 @@ mod tests {
         kept.extend(0..1000);
         trim(&mut kept);
         assert_eq!(kept.capacity(), 4000);
-        // small buffers keep 2048 places whatever they hold
+        // small buffers keep 2048 places (of u32) whatever they hold
         let mut small: Vec<u32> = Vec::with_capacity(2048);
         trim(&mut small);
         assert_eq!(small.capacity(), 2048);
+        // the floor is in bytes: places of 152 bytes keep 2·13 when empty
+        let mut wide: Vec<[u64; 19]> = Vec::with_capacity(1000);
+        trim(&mut wide);
+        assert!(wide.capacity() >= 26 && wide.capacity() < 64, "{}", wide.capacity());
     }
 }

@@ -363,7 +363,9 @@ impl Simulation {
         }
         let (general, pairs) = (&fresh.fresh, &fresh.pairs.fresh);
         let k = &mut self.state.clock.stiffness;
-        let lowest = add_fresh(k, &self.state.contacts, general, pairs, &self.state.model);
+        let shares = &fresh.pairs.fresh_shares;
+        let contacts = &self.state.contacts;
+        let lowest = add_fresh(k, contacts, general, pairs, shares, &self.state.model);
         if lowest < self.state.clock.critical_dt {
             self.state.clock.critical_dt = lowest;
             if let TimeStep::Auto { safety } = self.state.settings.time_step {

@@ -7,11 +7,13 @@
 //! estimate runs every 10 steps while contacts appear; on one thread it was a twentieth of
 //! the two-thread step of the 10⁵-sphere packing (issue 14).
 
+use crate::contact::Contact;
 use crate::contact_list::Contacts;
 use crate::dashpots::FactorMemo;
 use crate::gather::{fits_codes, Entry, LoadIndex};
 use crate::links::Links;
 use crate::neighbours::{merged_fresh, sites, Pick};
+use crate::pair_keys::ContactKey;
 use crate::time_step::{spring_increments, StiffnessSums};
 use flexdem_contact::{FrictionalParams, LinkSpring, LinkStatus};
 use flexdem_elements::virtual_sphere::Site;
@@ -186,167 +188,159 @@ pub(crate) fn add_per_particle(
     true
 }
 
-/// New contacts per parallel task of [`add_fresh`] (fewer in the tests: several tasks).
-const FRESH_PER_TASK: usize = if cfg!(test) { 8 } else { 256 };
-
 /// One node's share of a new contact's stiffness ([`add_fresh`]): the node, what the contact
-/// adds to its translational and rotational sums, and the largest component of each sum
-/// after the addition.
+/// adds to its translational and rotational sums, and what the node's critical step reads
+/// of it: its mass, its inertia and whether it is free in a DOF (a held node's step is not
+/// counted). 72 bytes.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct NodeShare {
     node: u32,
+    free: bool,
     increments: (Vec3, Vec3),
-    after: (Real, Real),
+    mass: Real,
+    inertia: Real,
 }
 
-/// A contact's two sites, law constants and normal (a pair's whole `Contact` is not made).
-fn law_of(
-    pick: Pick,
-    contacts: &Contacts,
-    model: &Model,
-) -> ((Site, Site), FrictionalParams, Vec3) {
-    match pick {
-        Pick::General(i) => {
-            let c = &contacts.list[i];
-            ((c.site1, c.site2), c.params, c.state.normal)
+impl NodeShare {
+    /// No share (a place to fill).
+    fn none() -> Self {
+        let zero = (Vec3::zeros(), Vec3::zeros());
+        NodeShare { node: 0, free: false, increments: zero, mass: 0.0, inertia: 0.0 }
+    }
+
+    /// Node `node`'s share of a contact of constants `params` and normal `n` on a site of
+    /// radius `radius` ([`contact_increments`]).
+    #[inline]
+    fn of(
+        p: &Particles,
+        node: u32,
+        params: &FrictionalParams,
+        n: &Vec3,
+        radius: Real,
+        memo: &mut [FactorMemo; 2],
+    ) -> Self {
+        let i = node as usize;
+        let (mass, inertia) = (p.mass[i], p.inertia[i]);
+        let increments = contact_increments(mass, params, n, radius, memo);
+        NodeShare { node, free: p.blocked[i] != Dofs::ALL, increments, mass, inertia }
+    }
+
+    /// The node's critical step `√(2·min(m/K_trans, J/K_rot))` when its sums have the
+    /// largest components `kt` and `kr` (infinite for no stiffness).
+    #[inline]
+    fn step(&self, kt: Real, kr: Real) -> Real {
+        let mut ratio = Real::INFINITY;
+        if kt > 0.0 {
+            ratio = ratio.min(self.mass / kt);
         }
-        Pick::Pair(i) => {
-            let (key, c) = contacts.pairs.get(i);
-            (sites(model, &key), c.params, c.state.normal)
+        if kr > 0.0 {
+            ratio = ratio.min(self.inertia / kr);
         }
+        (2.0 * ratio).sqrt()
     }
 }
 
-/// The shares of the nodes of a new contact's two sites, site 1's first (at most 3 each),
-/// and how many there are.
-fn node_shares(
-    pick: Pick,
-    contacts: &Contacts,
-    model: &Model,
+/// The node shares of a new pair of the neighbour list, body 1's first: two for two
+/// spheres, one for a wall and a sphere (a wall has no node). Found by the pair's step,
+/// where its contact and particles are at hand (`pair_chunk.rs`), for [`add_fresh`]: found
+/// there from the contacts, they were 4 % of a step of the packing of 10⁵ spheres settling
+/// (900 new pairs a step, 440 ns each, most of it waiting on memory).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct PairShares {
+    shares: [NodeShare; 2],
+    len: u8,
+}
+
+impl PairShares {
+    /// The shares of pair `key`'s nodes, for its contact's constants `params` and normal
+    /// `n` (after its law).
+    #[inline]
+    pub(crate) fn of(
+        model: &Model,
+        key: &ContactKey,
+        params: &FrictionalParams,
+        n: &Vec3,
+        memo: &mut [FactorMemo; 2],
+    ) -> Self {
+        let p = &model.particles;
+        let (site1, site2) = sites(model, key);
+        let mut shares = PairShares { shares: [NodeShare::none(); 2], len: 0 };
+        for site in [&site1, &site2] {
+            for &node in &site.nodes[..site.node_count()] {
+                let share = NodeShare::of(p, node, params, n, site.radius, memo);
+                shares.shares[shares.len as usize] = share;
+                shares.len += 1;
+            }
+        }
+        shares
+    }
+
+    /// The shares, body 1's first.
+    fn shares(&self) -> &[NodeShare] {
+        &self.shares[..self.len as usize]
+    }
+}
+
+/// The shares of the nodes of a new general contact's two sites, site 1's first (at most 3
+/// each), and how many there are.
+fn general_shares(
+    c: &Contact,
+    p: &Particles,
     memo: &mut [FactorMemo; 2],
 ) -> ([NodeShare; 6], usize) {
-    let ((site1, site2), params, normal) = law_of(pick, contacts, model);
-    let none = NodeShare { node: 0, increments: (Vec3::zeros(), Vec3::zeros()), after: (0.0, 0.0) };
-    let mut shares = [none; 6];
+    let mut shares = [NodeShare::none(); 6];
     let mut len = 0;
-    for site in [&site1, &site2] {
-        for slot in 0..site.node_count() {
-            let node = site.nodes[slot];
-            let mass = model.particles.mass[node as usize];
-            let increments = contact_increments(mass, &params, &normal, site.radius, memo);
-            shares[len] = NodeShare { node, increments, ..none };
+    for site in [&c.site1, &c.site2] {
+        for &node in &site.nodes[..site.node_count()] {
+            shares[len] = NodeShare::of(p, node, &c.params, &c.state.normal, site.radius, memo);
             len += 1;
         }
     }
     (shares, len)
 }
 
-/// Below this many new contacts in a step (or with one thread), [`add_fresh`] takes them in
-/// one pass ([`add_fresh_in_order`]).
-const MIN_PARALLEL_FRESH: usize = 4 * FRESH_PER_TASK;
-
 /// Adds the stiffness of the contacts made at this step (`fresh`, indices into the general
-/// list, and `fresh_pairs`, into the neighbour list) to `k`, in key order, and returns the
-/// lowest critical step `√(2·min(m/K_trans, J/K_rot))` of the nodes they touch that are free
-/// in a DOF, with each node's sums as they are after each of its additions (infinite for
-/// none): [`add_fresh_in_order`], or [`add_fresh_in_parallel`] (the same bits) for many.
+/// list, and `fresh_pairs`, into the neighbour list, whose node shares their step found:
+/// `pair_shares`, in the same order) to `k`, in key order, and returns the lowest critical
+/// step `√(2·min(m/K_trans, J/K_rot))` of the nodes they touch that are free in a DOF, with
+/// each node's sums as they are after each of its additions (infinite for none). One pass
+/// on this thread: what it reads of the pairs is in `pair_shares`, in order, and what it
+/// writes is two sums per node (900 new pairs in a step of a settling packing of 10⁵
+/// spheres: about 50 µs).
 pub(crate) fn add_fresh(
     k: &mut StiffnessSums,
     contacts: &Contacts,
     fresh: &[usize],
     fresh_pairs: &[usize],
+    pair_shares: &[PairShares],
     model: &Model,
 ) -> Real {
-    if fresh.len() + fresh_pairs.len() < MIN_PARALLEL_FRESH || rayon::current_num_threads() == 1 {
-        add_fresh_in_order(k, contacts, fresh, fresh_pairs, model)
-    } else {
-        add_fresh_in_parallel(k, contacts, fresh, fresh_pairs, model)
-    }
-}
-
-/// Adds a new contact's node share to `k`; returns the largest component of the node's
-/// translational and rotational sums after it.
-#[inline]
-fn add_share(k: &mut StiffnessSums, share: &NodeShare) -> (Real, Real) {
-    let n = share.node as usize;
-    let (t, r) = (&mut k.translational[n], &mut k.rotational[n]);
-    add_increments((&mut *t, &mut *r), share.increments);
-    (t.max(), r.max())
-}
-
-/// The critical step `√(2·min(m/K_trans, J/K_rot))` of particle `n` whose sums have
-/// the largest components `kt` and `kr` (infinite for no stiffness).
-#[inline]
-fn node_step(p: &Particles, n: usize, kt: Real, kr: Real) -> Real {
-    let mut ratio = Real::INFINITY;
-    if kt > 0.0 {
-        ratio = ratio.min(p.mass[n] / kt);
-    }
-    if kr > 0.0 {
-        ratio = ratio.min(p.inertia[n] / kr);
-    }
-    (2.0 * ratio).sqrt()
-}
-
-/// [`add_fresh`] in one pass: contact by contact in key order, each node's step after its
-/// addition.
-fn add_fresh_in_order(
-    k: &mut StiffnessSums,
-    contacts: &Contacts,
-    fresh: &[usize],
-    fresh_pairs: &[usize],
-    model: &Model,
-) -> Real {
+    debug_assert_eq!(fresh_pairs.len(), pair_shares.len());
     let p = &model.particles;
     let mut memo = Default::default();
     let mut lowest = Real::INFINITY;
+    let mut add = |share: &NodeShare| {
+        let n = share.node as usize;
+        let (t, r) = (&mut k.translational[n], &mut k.rotational[n]);
+        add_increments((&mut *t, &mut *r), share.increments);
+        if share.free {
+            lowest = lowest.min(share.step(t.max(), r.max()));
+        }
+    };
+    let mut pairs = pair_shares.iter();
     for pick in merged_fresh(&contacts.list, fresh, &contacts.pairs, fresh_pairs) {
-        let (shares, len) = node_shares(pick, contacts, model, &mut memo);
-        for share in &shares[..len] {
-            let (kt, kr) = add_share(k, share);
-            let n = share.node as usize;
-            if p.blocked[n] != Dofs::ALL {
-                lowest = lowest.min(node_step(p, n, kt, kr));
+        match pick {
+            Pick::General(i) => {
+                let (shares, len) = general_shares(&contacts.list[i], p, &mut memo);
+                shares[..len].iter().for_each(&mut add);
+            }
+            Pick::Pair(_) => {
+                let shares = pairs.next().expect("a new pair's shares");
+                shares.shares().iter().for_each(&mut add);
             }
         }
     }
     lowest
-}
-
-/// [`add_fresh`] in parallel: what each contact adds is found in parallel, added here in key
-/// order (the same additions in the same order as one pass), and the steps are found in
-/// parallel again (a minimum of numbers that are never NaN: the same in any order). A
-/// packing that settles makes thousands of contacts in some steps: in one pass on one
-/// thread they were a tenth of its two-thread step. (The buffers are made for the call: a
-/// scene's first step makes all its contacts at once, and kept, they held 14 % more memory
-/// for the rest of the run.)
-fn add_fresh_in_parallel(
-    k: &mut StiffnessSums,
-    contacts: &Contacts,
-    fresh: &[usize],
-    fresh_pairs: &[usize],
-    model: &Model,
-) -> Real {
-    let p = &model.particles;
-    let picks: Vec<Pick> =
-        merged_fresh(&contacts.list, fresh, &contacts.pairs, fresh_pairs).collect();
-    let found = picks
-        .par_iter()
-        .with_min_len(FRESH_PER_TASK)
-        .map_init(<[FactorMemo; 2]>::default, |memo, &pick| {
-            node_shares(pick, contacts, model, memo)
-        });
-    let mut shares: Vec<NodeShare> =
-        found.flat_map_iter(|(shares, len)| shares.into_iter().take(len)).collect();
-    for share in shares.iter_mut() {
-        share.after = add_share(k, share);
-    }
-    shares
-        .par_iter()
-        .with_min_len(FRESH_PER_TASK)
-        .filter(|s| p.blocked[s.node as usize] != Dofs::ALL)
-        .map(|s| node_step(p, s.node as usize, s.after.0, s.after.1))
-        .reduce(|| Real::INFINITY, Real::min)
 }
 
 #[cfg(test)]
@@ -421,11 +415,29 @@ mod tests {
         });
     }
 
+    /// A contact's two sites, law constants and normal, from the contacts.
+    fn law_of(
+        pick: Pick,
+        contacts: &Contacts,
+        model: &Model,
+    ) -> ((Site, Site), FrictionalParams, Vec3) {
+        match pick {
+            Pick::General(i) => {
+                let c = &contacts.list[i];
+                ((c.site1, c.site2), c.params, c.state.normal)
+            }
+            Pick::Pair(i) => {
+                let (key, c) = contacts.pairs.get(i);
+                (sites(model, &key), c.params, c.state.normal)
+            }
+        }
+    }
+
     /// The new contacts of [`heap_on_membrane`]'s first step (general and pairs, damped, with
-    /// a light sphere held among them): [`add_fresh_in_parallel`] with two threads and
-    /// [`add_fresh_in_order`] give the sums and the lowest step of one pass in key order,
-    /// contact by contact, each node's step after each of its additions, the held one's left
-    /// out, to the bit.
+    /// a light sphere held among them): [`add_fresh`], with the pairs' shares their step
+    /// found (two threads), gives the sums and the lowest step of one pass in key order from
+    /// the contacts, contact by contact, each node's step after each of its additions, the
+    /// held one's left out, to the bit.
     #[test]
     fn the_fresh_contacts_add_as_one_pass_does() {
         let mut model = heap_on_membrane();
@@ -441,8 +453,13 @@ mod tests {
             sim.step().unwrap();
             let fresh = &sim.pipeline.contacts;
             let (general, pairs) = (&fresh.fresh, &fresh.pairs.fresh);
-            // (several tasks: 8 new contacts each in the tests)
+            // (pairs of two spheres and of a wall and a sphere)
             assert!(!general.is_empty() && pairs.len() > 40, "{} {}", general.len(), pairs.len());
+            let on_wall = |&&n: &&usize| {
+                let key = sim.state.contacts.pairs.get(n).0;
+                matches!(key.0, flexdem_elements::virtual_sphere::Feature::Wall(_))
+            };
+            assert!(pairs.iter().filter(on_wall).count() > 0);
             let (contacts, model) = (&sim.state.contacts, &sim.state.model);
             let p = &model.particles;
             let mut one_pass = sim.state.clock.stiffness.clone();
@@ -473,11 +490,8 @@ mod tests {
                 }
             }
             let mut k = sim.state.clock.stiffness.clone();
-            let found = add_fresh_in_parallel(&mut k, contacts, general, pairs, model);
-            let mut k_in_order = sim.state.clock.stiffness.clone();
-            let in_order = add_fresh_in_order(&mut k_in_order, contacts, general, pairs, model);
-            assert_eq!(in_order.to_bits(), lowest.to_bits());
-            assert_eq!(k_in_order, one_pass);
+            let shares = &fresh.pairs.fresh_shares;
+            let found = add_fresh(&mut k, contacts, general, pairs, shares, model);
             assert!(lowest.is_finite() && lowest_held < lowest, "{lowest} {lowest_held}");
             assert_eq!(found.to_bits(), lowest.to_bits());
             assert_eq!(k, one_pass);
