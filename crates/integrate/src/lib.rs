@@ -13,6 +13,7 @@ mod culprit;
 mod dashpots;
 mod energy;
 mod error;
+mod fresh_shares;
 mod gather;
 mod integrator;
 mod integrator_lanes;

@@ -3,8 +3,8 @@
 //! read by both passes over the chunks (`pair_passes.rs`).
 
 use crate::dashpots::FactorMemo;
+use crate::fresh_shares::PairShares;
 use crate::neighbours::{AppliedForce, PairContact, PairOutcome, Pushed};
-use crate::stiffness_sums::PairShares;
 use flexdem_geom::Real;
 
 /// What the pairs of one chunk added to the step's sums, each in pair order (from +0 for the

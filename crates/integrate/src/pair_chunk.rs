@@ -13,12 +13,12 @@
 //! before pairs of the other kind wait (the loads, sums and records stay in key order); a
 //! wait of one pair takes the scalar path.
 
+use crate::fresh_shares::PairShares;
 use crate::neighbours::{AppliedForce, LawOut, PairContact, PairOutcome, Pushed};
 use crate::pair_book::ChunkBook;
 use crate::pair_keys::{key_at, ContactKey};
 use crate::pair_step::{continuing_pair, first_not_apart, step_pair, wall_apart};
 use crate::pair_store::{BlockContacts, BLOCK, NO_CONTACT};
-use crate::stiffness_sums::PairShares;
 use flexdem_contact::frictional_lanes::{
     update_sphere_pair_lanes, update_wall_sphere_lanes, ContactLanesOut, SpherePairLanes,
     WallSphereLanes, LANES,

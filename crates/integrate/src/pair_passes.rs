@@ -6,15 +6,13 @@
 
 use crate::contact::BirthReport;
 use crate::dashpots::pair_dashpot_power;
+use crate::fresh_shares::PairShares;
 use crate::neighbours::{AppliedForce, NeighbourList, PairContact, Sink};
 use crate::pair_book::{ChunkBook, ChunkSums};
 use crate::pair_chunk::{ChunkPass, EmitLoads, PAIR_CHUNK};
 use crate::pair_keys::ContactKey;
-use crate::pair_parts::PairParts;
 use crate::pair_store::{BlockContacts, BLOCK, NO_CONTACT};
 use crate::parallel::MAX_CHUNKS_PER_TASK;
-use crate::part_step::{add_deferred, step_parts, DeferredLoad, PartInputs, PartShared};
-use crate::stiffness_sums::PairShares;
 use flexdem_elements::virtual_sphere::{Feature, Kinematics, NodeLoad};
 use flexdem_elements::Model;
 use flexdem_geom::{Real, Vec3};
@@ -43,6 +41,15 @@ impl PairLoads {
         let force = if side == 0 { -self.force_on_2 } else { self.force_on_2 };
         NodeLoad { node, force, torque: self.torques[side] }
     }
+}
+
+/// A load that a part of the update in parts keeps for a particle it does not sum
+/// (`part_step.rs`; 56 bytes).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct DeferredLoad {
+    pub(crate) particle: u32,
+    pub(crate) force: Vec3,
+    pub(crate) torque: Vec3,
 }
 
 /// The parallel update's [`EmitLoads`]: each touching pair's loads kept in its chunk's
@@ -111,20 +118,20 @@ pub(crate) struct ChunkOut {
 #[derive(Clone, Debug, Default)]
 pub(crate) struct PairScratch {
     /// Per chunk of [`PAIR_CHUNK`] candidates, its part of the last update.
-    chunks: Vec<ChunkOut>,
+    pub(crate) chunks: Vec<ChunkOut>,
     /// Indices of the pairs that started touching at the last update.
     pub(crate) fresh: Vec<usize>,
     /// Their nodes' shares of their stiffness, in the same order.
     pub(crate) fresh_shares: Vec<PairShares>,
     /// Per candidate pair, where its outcome is in its chunk's list at the last parallel
     /// update (written for the pairs it stepped only).
-    position: Vec<u32>,
+    pub(crate) position: Vec<u32>,
     /// The generation of the candidates of the last update (`NeighbourList::generation`;
     /// 0 before any): its records are theirs.
     generation: u64,
     /// The loads the parts kept for the particles they do not sum at the last update in
     /// parts (`part_step.rs`): part `q`'s for the particles of part `o` at `q·parts + o`.
-    deferred: Vec<Vec<DeferredLoad>>,
+    pub(crate) deferred: Vec<Vec<DeferredLoad>>,
 }
 
 /// What the last update of a neighbour list gave besides its contacts' states, for the
@@ -164,7 +171,7 @@ impl LastUpdate<'_> {
 /// fresh pairs held 26 bytes per sphere for the rest of the run (with a floor of 1024 places
 /// whatever their size, the new pairs' stiffness shares, 152 bytes each, kept 220 bytes per
 /// sphere of the packing of 10⁵ spheres in its 75 chunks).
-fn trim<T>(buffer: &mut Vec<T>) {
+pub(crate) fn trim<T>(buffer: &mut Vec<T>) {
     let floor = (2048 / std::mem::size_of::<T>().max(1)).max(1);
     let room = 2 * buffer.len().max(floor);
     if buffer.capacity() > 2 * room {
@@ -173,7 +180,7 @@ fn trim<T>(buffer: &mut Vec<T>) {
 }
 
 /// The chunks of `candidates` pairs, cleared (their buffers kept).
-fn chunks_for(chunks: &mut Vec<ChunkOut>, candidates: usize) -> &mut [ChunkOut] {
+pub(crate) fn chunks_for(chunks: &mut Vec<ChunkOut>, candidates: usize) -> &mut [ChunkOut] {
     let used = candidates.div_ceil(PAIR_CHUNK);
     if chunks.len() < used {
         chunks.resize_with(used, ChunkOut::default);
@@ -255,48 +262,6 @@ impl NeighbourList {
         self.finish_update(scratch, ended_dissipation)
     }
 
-    /// [`NeighbourList::update`] in the parts of `parts` (`pair_parts.rs`, `part_step.rs`):
-    /// the parts in parallel, each one's chunks in order on one thread, then the loads they
-    /// kept added. Writes in `force` and `torque` (one entry per particle) the sum of every
-    /// particle's pair loads in key order, except those the gather sums (`gather.rs`,
-    /// [`SumBy::Gather`](crate::pair_parts::SumBy), zero here), whose pairs' outcomes it
-    /// keeps. The same contacts, records and sums as `update`.
-    #[allow(clippy::too_many_arguments, reason = "update's inputs, the parts and the sums")]
-    pub(crate) fn update_in_parts(
-        &mut self,
-        model: &Model,
-        dt: Real,
-        scratch: &mut PairScratch,
-        ended_dissipation: &mut Real,
-        parts: &PairParts,
-        force: &mut [Vec3],
-        torque: &mut [Vec3],
-    ) -> BirthReport {
-        let k = Kinematics::of(&model.particles);
-        let pass = PassInputs { model, kinematics: &k, first_wall: self.keys.first_wall(), dt };
-        scratch.position.resize(self.keys.len(), 0);
-        let chunks = chunks_for(&mut scratch.chunks, self.keys.len());
-        let lists = parts.len() * parts.len();
-        if scratch.deferred.len() != lists {
-            scratch.deferred.resize_with(lists, Vec::new);
-        }
-        let shared = PartShared { pass, parts };
-        let inputs = PartInputs {
-            ids: self.keys.ids(),
-            slots: &mut self.slots,
-            blocks: &mut self.blocks,
-            positions: &mut scratch.position,
-            chunks,
-            force: &mut *force,
-            torque: &mut *torque,
-            deferred: &mut scratch.deferred,
-        };
-        step_parts(&shared, 0..parts.len(), inputs);
-        add_deferred(parts, force, torque, &scratch.deferred);
-        scratch.deferred.iter_mut().for_each(trim);
-        self.finish_update(scratch, ended_dissipation)
-    }
-
     /// [`NeighbourList::update`] in one pass on this thread, giving `sink` each touching
     /// pair's key (`Sink::Before`), then its node loads (`Sink::Load`), in key order: the
     /// loads are summed as they come (no buffer), with the same results (and the records of
@@ -323,7 +288,7 @@ impl NeighbourList {
     /// What every update ends with: the step's report and sums from the chunks' (in chunk
     /// order, [`PairScratch::totals`]), the ended pairs' friction added to
     /// `ended_dissipation`, and the scratch marked as this list's.
-    fn finish_update(
+    pub(crate) fn finish_update(
         &mut self,
         scratch: &mut PairScratch,
         ended_dissipation: &mut Real,
@@ -427,7 +392,17 @@ pub(crate) struct PassInputs<'a> {
     dt: Real,
 }
 
-impl PassInputs<'_> {
+impl<'a> PassInputs<'a> {
+    /// The inputs of a pass over the pairs of a list whose first wall pair is `first_wall`.
+    pub(crate) fn new(
+        model: &'a Model,
+        kinematics: &'a Kinematics<'a>,
+        first_wall: usize,
+        dt: Real,
+    ) -> Self {
+        PassInputs { model, kinematics, first_wall, dt }
+    }
+
     /// Steps chunk `c` (its pairs' `ids`, `slots` and `blocks`), its records in `book`, its
     /// touching pairs' loads given to `emit`: the chunk's blocks tidied, then
     /// [`ChunkPass::step`].

@@ -1,28 +1,25 @@
 //! The step of the candidate pairs in parts (`pair_parts.rs`,
 //! `NeighbourList::update_in_parts`): the parts in parallel, each one's chunks in order on
-//! one thread, which sums the loads on the particles it owns and sums ([`SumBy::Part`], and
-//! [`SumBy::PartThenWalls`] but for its walls) as they come and keeps the others' loads, in pair order, in one list per owner part
-//! ([`DeferredLoad`]); then, in parallel over the owners, each owner's lists added to its
-//! particles in part order ([`add_deferred`]). Per particle that is every load in key order:
-//! the part's sum first for one that sums in its part (its other loads are walls', whose
-//! pairs come last), from zero for the others.
+//! one thread, which sums as they come the loads on the particles it owns and sums
+//! ([`SumBy::Part`], and [`SumBy::PartThenWalls`] but for its walls) and keeps the others'
+//! loads, in pair order, in one list per owner part ([`DeferredLoad`]); then, in parallel
+//! over the owners, each owner's lists added to its particles in part order
+//! ([`add_deferred`]). Per particle that is every load in key order: the part's sum first
+//! for one that sums in its part (its other loads are walls', whose pairs come last), from
+//! zero for the others.
 
-use crate::neighbours::PairContact;
+use crate::contact::BirthReport;
+use crate::neighbours::{NeighbourList, PairContact};
 use crate::pair_chunk::{EmitLoads, PAIR_CHUNK};
 use crate::pair_keys::ContactKey;
 use crate::pair_parts::{PairParts, SumBy};
-use crate::pair_passes::{ChunkOut, PassInputs, ToOutcomes};
+use crate::pair_passes::{
+    chunks_for, trim, ChunkOut, DeferredLoad, PairScratch, PassInputs, ToOutcomes,
+};
 use crate::pair_store::{BlockContacts, BLOCK};
-use flexdem_elements::virtual_sphere::{Feature, NodeLoad};
-use flexdem_geom::Vec3;
-
-/// A load that a part keeps for a particle it does not sum (56 bytes).
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct DeferredLoad {
-    particle: u32,
-    force: Vec3,
-    torque: Vec3,
-}
+use flexdem_elements::virtual_sphere::{Feature, Kinematics, NodeLoad};
+use flexdem_elements::Model;
+use flexdem_geom::{Real, Vec3};
 
 /// The parts' [`EmitLoads`]: the loads of a pair on a particle its part sums added to it as
 /// they come, on one summed after the parts
@@ -92,24 +89,68 @@ impl EmitLoads for ToParts<'_> {
     }
 }
 
+impl NeighbourList {
+    /// [`NeighbourList::update`] in the parts of `parts` (`pair_parts.rs`, `part_step.rs`):
+    /// the parts in parallel, each one's chunks in order on one thread, then the loads they
+    /// kept added. Writes in `force` and `torque` (one entry per particle) the sum of every
+    /// particle's pair loads in key order, except those the gather sums (`gather.rs`,
+    /// [`SumBy::Gather`](crate::pair_parts::SumBy), zero here), whose pairs' outcomes it
+    /// keeps. The same contacts, records and sums as `update`.
+    #[allow(clippy::too_many_arguments, reason = "update's inputs, the parts and the sums")]
+    pub(crate) fn update_in_parts(
+        &mut self,
+        model: &Model,
+        dt: Real,
+        scratch: &mut PairScratch,
+        ended_dissipation: &mut Real,
+        parts: &PairParts,
+        force: &mut [Vec3],
+        torque: &mut [Vec3],
+    ) -> BirthReport {
+        let k = Kinematics::of(&model.particles);
+        let pass = PassInputs::new(model, &k, self.keys.first_wall(), dt);
+        scratch.position.resize(self.keys.len(), 0);
+        let chunks = chunks_for(&mut scratch.chunks, self.keys.len());
+        let lists = parts.len() * parts.len();
+        if scratch.deferred.len() != lists {
+            scratch.deferred.resize_with(lists, Vec::new);
+        }
+        let shared = PartShared { pass, parts };
+        let inputs = PartInputs {
+            ids: self.keys.ids(),
+            slots: &mut self.slots,
+            blocks: &mut self.blocks,
+            positions: &mut scratch.position,
+            chunks,
+            force: &mut *force,
+            torque: &mut *torque,
+            deferred: &mut scratch.deferred,
+        };
+        step_parts(&shared, 0..parts.len(), inputs);
+        add_deferred(parts, force, torque, &scratch.deferred);
+        scratch.deferred.iter_mut().for_each(trim);
+        self.finish_update(scratch, ended_dissipation)
+    }
+}
+
 /// What every part reads.
-pub(crate) struct PartShared<'a> {
-    pub(crate) pass: PassInputs<'a>,
-    pub(crate) parts: &'a PairParts,
+struct PartShared<'a> {
+    pass: PassInputs<'a>,
+    parts: &'a PairParts,
 }
 
 /// What some consecutive parts write: their pairs' ids, slots, blocks, outcomes' positions
 /// and chunks, their particles' sums and their lists of kept loads (one per owner part for
 /// each of these parts).
-pub(crate) struct PartInputs<'a> {
-    pub(crate) ids: &'a [(u32, u32)],
-    pub(crate) slots: &'a mut [u32],
-    pub(crate) blocks: &'a mut [BlockContacts<PairContact>],
-    pub(crate) positions: &'a mut [u32],
-    pub(crate) chunks: &'a mut [ChunkOut],
-    pub(crate) force: &'a mut [Vec3],
-    pub(crate) torque: &'a mut [Vec3],
-    pub(crate) deferred: &'a mut [Vec<DeferredLoad>],
+struct PartInputs<'a> {
+    ids: &'a [(u32, u32)],
+    slots: &'a mut [u32],
+    blocks: &'a mut [BlockContacts<PairContact>],
+    positions: &'a mut [u32],
+    chunks: &'a mut [ChunkOut],
+    force: &'a mut [Vec3],
+    torque: &'a mut [Vec3],
+    deferred: &'a mut [Vec<DeferredLoad>],
 }
 
 impl PartInputs<'_> {
@@ -142,11 +183,7 @@ impl PartInputs<'_> {
 }
 
 /// Steps `parts` (consecutive), whose inputs are `inputs`: halved, the halves in parallel.
-pub(crate) fn step_parts(
-    s: &PartShared<'_>,
-    parts: std::ops::Range<usize>,
-    inputs: PartInputs<'_>,
-) {
+fn step_parts(s: &PartShared<'_>, parts: std::ops::Range<usize>, inputs: PartInputs<'_>) {
     if parts.len() <= 1 {
         if !parts.is_empty() {
             step_part(s, parts.start, inputs);
@@ -185,7 +222,7 @@ fn step_part(s: &PartShared<'_>, p: usize, inputs: PartInputs<'_>) {
 /// Adds to `force` and `torque` (one entry per particle) the loads the parts kept
 /// (`deferred`: part `q`'s list for owner `o` at `q·parts + o`), in parallel over the owner
 /// parts, each owner's lists in part order, each list in its order: the loads in key order.
-pub(crate) fn add_deferred(
+fn add_deferred(
     parts: &PairParts,
     force: &mut [Vec3],
     torque: &mut [Vec3],

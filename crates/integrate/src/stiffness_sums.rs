@@ -10,14 +10,14 @@
 use crate::contact::Contact;
 use crate::contact_list::Contacts;
 use crate::dashpots::FactorMemo;
+use crate::fresh_shares::{contact_increments, NodeShare, PairShares};
 use crate::gather::{fits_codes, Entry, LoadIndex};
 use crate::links::Links;
-use crate::neighbours::{merged_fresh, sites, Pick};
-use crate::pair_keys::ContactKey;
+use crate::neighbours::{merged_fresh, Pick};
 use crate::time_step::{spring_increments, StiffnessSums};
 use flexdem_contact::{FrictionalParams, LinkSpring, LinkStatus};
 use flexdem_elements::virtual_sphere::Site;
-use flexdem_elements::{Dofs, Model, Particles};
+use flexdem_elements::{Model, Particles};
 use flexdem_geom::{Real, Vec3};
 use rayon::prelude::*;
 
@@ -44,30 +44,6 @@ fn link_spring<'a>(
     let len = d.norm();
     let n = if len > 0.0 { d / len } else { Vec3::x() };
     Some((n, 0.5 * len, links.spring_of(l)))
-}
-
-/// What a contact's stiffness adds to the sums of one node of mass `mass` carrying one of its
-/// sites, of radius `radius` (the lever arm of the shear): the full contact stiffness
-/// (conservative). A contact with dashpots counts for the stiffer spring whose stability
-/// limit it has (`damped_stiffness_factor`, model.md §7; `memo` keeps its last answers, one
-/// for the normal spring and one for the shear spring).
-#[inline]
-fn contact_increments(
-    mass: Real,
-    params: &FrictionalParams,
-    n: &Vec3,
-    radius: Real,
-    memo: &mut [FactorMemo; 2],
-) -> (Vec3, Vec3) {
-    let c = params;
-    let (kn, ks) = (c.kn, c.ks);
-    if c.is_damped() {
-        let kn = kn * memo[0].factor(kn, c.cn, mass);
-        let ks = ks * memo[1].factor(ks, c.ct, mass);
-        spring_increments(n, kn, ks, radius, 0.0, 0.0)
-    } else {
-        spring_increments(n, kn, ks, radius, 0.0, 0.0)
-    }
 }
 
 /// Adds increments `(t, r)` to one particle's sums `(translational, rotational)`.
@@ -188,99 +164,6 @@ pub(crate) fn add_per_particle(
     true
 }
 
-/// One node's share of a new contact's stiffness ([`add_fresh`]): the node, what the contact
-/// adds to its translational and rotational sums, and what the node's critical step reads
-/// of it: its mass, its inertia and whether it is free in a DOF (a held node's step is not
-/// counted). 72 bytes.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct NodeShare {
-    node: u32,
-    free: bool,
-    increments: (Vec3, Vec3),
-    mass: Real,
-    inertia: Real,
-}
-
-impl NodeShare {
-    /// No share (a place to fill).
-    fn none() -> Self {
-        let zero = (Vec3::zeros(), Vec3::zeros());
-        NodeShare { node: 0, free: false, increments: zero, mass: 0.0, inertia: 0.0 }
-    }
-
-    /// Node `node`'s share of a contact of constants `params` and normal `n` on a site of
-    /// radius `radius` ([`contact_increments`]).
-    #[inline]
-    fn of(
-        p: &Particles,
-        node: u32,
-        params: &FrictionalParams,
-        n: &Vec3,
-        radius: Real,
-        memo: &mut [FactorMemo; 2],
-    ) -> Self {
-        let i = node as usize;
-        let (mass, inertia) = (p.mass[i], p.inertia[i]);
-        let increments = contact_increments(mass, params, n, radius, memo);
-        NodeShare { node, free: p.blocked[i] != Dofs::ALL, increments, mass, inertia }
-    }
-
-    /// The node's critical step `√(2·min(m/K_trans, J/K_rot))` when its sums have the
-    /// largest components `kt` and `kr` (infinite for no stiffness).
-    #[inline]
-    fn step(&self, kt: Real, kr: Real) -> Real {
-        let mut ratio = Real::INFINITY;
-        if kt > 0.0 {
-            ratio = ratio.min(self.mass / kt);
-        }
-        if kr > 0.0 {
-            ratio = ratio.min(self.inertia / kr);
-        }
-        (2.0 * ratio).sqrt()
-    }
-}
-
-/// The node shares of a new pair of the neighbour list, body 1's first: two for two
-/// spheres, one for a wall and a sphere (a wall has no node). Found by the pair's step,
-/// where its contact and particles are at hand (`pair_chunk.rs`), for [`add_fresh`]: found
-/// there from the contacts, they were 4 % of a step of the packing of 10⁵ spheres settling
-/// (900 new pairs a step, 440 ns each, most of it waiting on memory).
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct PairShares {
-    shares: [NodeShare; 2],
-    len: u8,
-}
-
-impl PairShares {
-    /// The shares of pair `key`'s nodes, for its contact's constants `params` and normal
-    /// `n` (after its law).
-    #[inline]
-    pub(crate) fn of(
-        model: &Model,
-        key: &ContactKey,
-        params: &FrictionalParams,
-        n: &Vec3,
-        memo: &mut [FactorMemo; 2],
-    ) -> Self {
-        let p = &model.particles;
-        let (site1, site2) = sites(model, key);
-        let mut shares = PairShares { shares: [NodeShare::none(); 2], len: 0 };
-        for site in [&site1, &site2] {
-            for &node in &site.nodes[..site.node_count()] {
-                let share = NodeShare::of(p, node, params, n, site.radius, memo);
-                shares.shares[shares.len as usize] = share;
-                shares.len += 1;
-            }
-        }
-        shares
-    }
-
-    /// The shares, body 1's first.
-    fn shares(&self) -> &[NodeShare] {
-        &self.shares[..self.len as usize]
-    }
-}
-
 /// The shares of the nodes of a new general contact's two sites, site 1's first (at most 3
 /// each), and how many there are.
 fn general_shares(
@@ -319,14 +202,7 @@ pub(crate) fn add_fresh(
     let p = &model.particles;
     let mut memo = Default::default();
     let mut lowest = Real::INFINITY;
-    let mut add = |share: &NodeShare| {
-        let n = share.node as usize;
-        let (t, r) = (&mut k.translational[n], &mut k.rotational[n]);
-        add_increments((&mut *t, &mut *r), share.increments);
-        if share.free {
-            lowest = lowest.min(share.step(t.max(), r.max()));
-        }
-    };
+    let mut add = |share: &NodeShare| lowest = lowest.min(share.add_to(k));
     let mut pairs = pair_shares.iter();
     for pick in merged_fresh(&contacts.list, fresh, &contacts.pairs, fresh_pairs) {
         match pick {
@@ -346,6 +222,7 @@ pub(crate) fn add_fresh(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::neighbours::sites;
     use crate::{Settings, Simulation};
     use flexdem_contact::{ContactDamping, Material};
     use flexdem_elements::builders::{membrane_rectangle, StructureOptions};
