@@ -10,7 +10,7 @@ use crate::contact::{geometry, law_kinematics, BirthReport, Contact};
 use crate::contact_list::Contacts;
 use crate::contacts::ContactPipeline;
 use crate::dashpots::dashpot_power;
-use crate::gather::{fits_codes, load_nodes, NO_NODE};
+use crate::gather::{fits_codes, load_nodes, write_general_loads, NO_NODE};
 use crate::neighbours::{merged, Pick, Sink};
 use crate::pair_parts::PARTS_PER_THREAD;
 use crate::parallel::{MIN_PARALLEL_CHEAP, MIN_PARALLEL_COSTLY};
@@ -167,6 +167,12 @@ impl ContactPipeline {
             return report;
         }
         let report = contacts.pairs.update(model, dt, &mut self.pairs, ended);
+        if gathered && contacts.pairs.is_empty() {
+            // no pair touches, the general contacts' loads alone: summed per range of
+            // particles (`gather.rs`)
+            write_general_loads(force, torque, &self.loads, &self.load_nodes);
+            return report;
+        }
         if gathered {
             // each particle's loads in key order, in parallel over the particles (`gather.rs`)
             let index = &mut self.load_index;

@@ -251,6 +251,42 @@ impl LoadIndex {
     }
 }
 
+/// Writes in `force` and `torque` (one entry per particle) the sums of the general
+/// contacts' node loads (`loads`, with the particles they go to, `load_nodes`, [`NO_NODE`]
+/// for none), each particle's in contact order and slot order from +0: what adding them to
+/// zeroed arrays in one pass gives, bit for bit, when no candidate pair touches (with
+/// pairs touching, their loads come among these in key order: `LoadIndex`). In parallel
+/// over as many ranges of particles as there are threads, each range zeroed, then given the
+/// loads on its particles by a scan of every contact's nodes (24 bytes a contact; a load is
+/// read only by its range). Without an index: for the PFacet membrane of 10⁵ elements under
+/// spheres (9 300 contacts, no pair), the index of the general loads (a counting sort on one
+/// thread) and the gather per particle took 195 and 274 µs of a 2-thread step.
+pub(crate) fn write_general_loads(
+    force: &mut [Vec3],
+    torque: &mut [Vec3],
+    loads: &[[NodeLoad; 6]],
+    load_nodes: &[[u32; 6]],
+) {
+    let ranges = rayon::current_num_threads().max(1);
+    let per = force.len().div_ceil(ranges).max(1);
+    let each = force.par_chunks_mut(per).zip(torque.par_chunks_mut(per)).enumerate();
+    each.for_each(|(r, (f, t))| {
+        f.fill(Vec3::zeros());
+        t.fill(Vec3::zeros());
+        let first = r * per;
+        let range = first as u32..(first + f.len()) as u32;
+        for (nodes, loads) in load_nodes.iter().zip(loads) {
+            for (node, l) in nodes.iter().zip(loads) {
+                if range.contains(node) {
+                    let k = (node - range.start) as usize;
+                    f[k] += l.force;
+                    t[k] += l.torque;
+                }
+            }
+        }
+    });
+}
+
 /// A particle's entry in the index: a general contact's `8·n + slot`, or a candidate pair's
 /// `2·n + side`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -304,6 +340,55 @@ fn counting_sort(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The general loads summed per range of particles, with 1 to 4 threads, are the sums
+    /// of one pass in contact and slot order onto zeros, to the bit: 500 contacts loading 3
+    /// to 6 of 40 particles (about 60 loads each, of magnitudes from 10⁻³ to 10³, whose
+    /// sums in another order differ).
+    #[test]
+    fn the_general_loads_per_range_are_the_one_pass_sums() {
+        let particles = 40;
+        let mut seed = 12345u64;
+        let mut next = || {
+            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let (mut loads, mut nodes) = (Vec::new(), Vec::new());
+        for _ in 0..500 {
+            let mut l = [NodeLoad { node: 0, force: Vec3::zeros(), torque: Vec3::zeros() }; 6];
+            let mut n = [NO_NODE; 6];
+            let used = 3 + (next() * 4.0) as usize;
+            for slot in 0..6 {
+                let scale = 10f64.powf(6.0 * next() - 3.0);
+                let mut v = || Vec3::new(next() - 0.5, next() - 0.5, next() - 0.5) * scale;
+                l[slot].force = v();
+                l[slot].torque = v();
+                if slot < used {
+                    n[slot] = (next() * particles as f64) as u32;
+                }
+            }
+            loads.push(l);
+            nodes.push(n);
+        }
+        let mut one_pass = (vec![Vec3::zeros(); particles], vec![Vec3::zeros(); particles]);
+        for (n, l) in nodes.iter().zip(&loads) {
+            for slot in (0..6).filter(|&s| n[s] != NO_NODE) {
+                one_pass.0[n[slot] as usize] += l[slot].force;
+                one_pass.1[n[slot] as usize] += l[slot].torque;
+            }
+        }
+        let bits = |v: &[Vec3]| -> Vec<[u64; 3]> {
+            v.iter().map(|x| [x.x, x.y, x.z].map(f64::to_bits)).collect()
+        };
+        for threads in 1..=4 {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            let (mut f, mut t) =
+                (vec![Vec3::repeat(7.0); particles], vec![Vec3::repeat(7.0); particles]);
+            pool.install(|| write_general_loads(&mut f, &mut t, &loads, &nodes));
+            assert_eq!(bits(&f), bits(&one_pass.0), "{threads} threads");
+            assert_eq!(bits(&t), bits(&one_pass.1), "{threads} threads");
+        }
+    }
 
     #[test]
     fn counting_sort_keeps_each_particles_order() {
