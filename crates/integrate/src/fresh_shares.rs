@@ -35,10 +35,10 @@ pub(crate) fn contact_increments(
     }
 }
 
-/// One node's share of a new contact's stiffness (`stiffness_sums::add_fresh`): the node, what the contact
-/// adds to its translational and rotational sums, and what the node's critical step reads
-/// of it: its mass, its inertia and whether it is free in a DOF (a held node's step is not
-/// counted). 72 bytes.
+/// One node's share of a new contact's stiffness (`stiffness_sums::add_fresh`): the node,
+/// what the contact adds to its translational and rotational sums, and what the node's
+/// critical step reads of it: its mass, its inertia and whether it is free in a DOF (a
+/// held node's step is not counted). 72 bytes.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct NodeShare {
     node: u32,
@@ -98,9 +98,10 @@ impl NodeShare {
 
 /// The node shares of a new pair of the neighbour list, body 1's first: two for two
 /// spheres, one for a wall and a sphere (a wall has no node). Found by the pair's step,
-/// where its contact and particles are at hand (`pair_chunk.rs`), for `stiffness_sums::add_fresh`: found
-/// there from the contacts, they were 4 % of a step of the packing of 10⁵ spheres settling
-/// (900 new pairs a step, 440 ns each, most of it waiting on memory).
+/// where its contact and particles are at hand (`pair_chunk.rs`), for
+/// `stiffness_sums::add_fresh`: found there from the contacts, they were 4 % of a step of
+/// the packing of 10⁵ spheres settling (900 new pairs a step, 440 ns each, most of it
+/// waiting on memory).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct PairShares {
     shares: [NodeShare; 2],

@@ -1,6 +1,7 @@
-//! The step of every candidate pair of the neighbour list (`neighbours.rs`): in parallel (`update`, its outcomes
-//! kept per chunk for the loads' sum, `gather.rs`) or in one pass on this thread
-//! (`update_in_order`, the loads handed on as they come). Both sum the step's energy terms
+//! The step of every candidate pair of the neighbour list (`neighbours.rs`): in parallel
+//! (`update`, its outcomes kept per chunk for the loads' sum, `gather.rs`), in parts
+//! (`part_step.rs`, with this file's chunk step and buffers) or in one pass on this thread
+//! (`update_in_order`, the loads handed on as they come). All sum the step's energy terms
 //! per chunk of [`PAIR_CHUNK`] candidates, in pair order, then over the chunks in order: the
 //! same additions whichever pass ran, so the same bits whatever the number of threads.
 
