@@ -2,8 +2,9 @@
 //! contact lists: spheres resting on a PFacet membrane (general contacts) and on each other
 //! (the free spheres' neighbour list). With more than one thread, each particle's loads are
 //! summed in parallel, merged from the two lists by key (`gather.rs`), or, where the pairs
-//! are many, partly in the parts the pairs are stepped in (`pair_parts.rs`); with one, in a
-//! single pass in key order. They must add the same loads in the same order.
+//! are many, in the parts the pairs are stepped in and from the lists of loads the parts
+//! keep (`pair_parts.rs`, `part_step.rs`); with one, in a single pass in key order. They
+//! must add the same loads in the same order.
 
 use flexdem_bench::scenes::{
     membrane, packing, packing_columns, MEMBRANE_CELL, PACKING_LAYERS, PACKING_RADIUS,
@@ -92,8 +93,8 @@ fn mixed_contact_lists_give_the_same_results_with_one_and_two_threads() {
 /// walls: about 37 000 candidate pairs, 10 chunks) with a steel net pinned at its corners
 /// lying on the top layer: sphere pairs, walls' pairs and the net's general contacts with
 /// the top spheres, so that with more than one thread the pairs are stepped in parts and
-/// some spheres' loads are summed in their part, some after it (walls) and some by the gather
-/// (parts' borders, the net's).
+/// some spheres' loads are summed in their part, some after it from the parts' lists (walls'
+/// loads, spheres on the parts' borders) and some by the gather (the net's).
 fn packing_under_a_net() -> Simulation {
     let (mut model, settings) = packing(12_000).unwrap();
     let side = packing_columns(12_000) as Real * 2.1 * PACKING_RADIUS;

@@ -8,6 +8,7 @@ use crate::neighbours::sites;
 use crate::pair_keys::ContactKey;
 use crate::time_step::{spring_increments, StiffnessSums};
 use flexdem_contact::FrictionalParams;
+use flexdem_elements::virtual_sphere::Site;
 use flexdem_elements::{Dofs, Model, Particles};
 use flexdem_geom::{Real, Vec3};
 
@@ -50,7 +51,7 @@ pub(crate) struct NodeShare {
 
 impl NodeShare {
     /// No share (a place to fill).
-    pub(crate) fn none() -> Self {
+    fn none() -> Self {
         let zero = (Vec3::zeros(), Vec3::zeros());
         NodeShare { node: 0, free: false, increments: zero, mass: 0.0, inertia: 0.0 }
     }
@@ -58,7 +59,7 @@ impl NodeShare {
     /// Node `node`'s share of a contact of constants `params` and normal `n` on a site of
     /// radius `radius` ([`contact_increments`]).
     #[inline]
-    pub(crate) fn of(
+    fn of(
         p: &Particles,
         node: u32,
         params: &FrictionalParams,
@@ -96,6 +97,26 @@ impl NodeShare {
     }
 }
 
+/// The shares of the nodes of a new contact's `sites` (body 1's first; at most `N` in all),
+/// for its constants `params` and normal `n`, and how many there are.
+pub(crate) fn site_shares<const N: usize>(
+    p: &Particles,
+    sites: [&Site; 2],
+    params: &FrictionalParams,
+    n: &Vec3,
+    memo: &mut [FactorMemo; 2],
+) -> ([NodeShare; N], usize) {
+    let mut shares = [NodeShare::none(); N];
+    let mut len = 0;
+    for site in sites {
+        for &node in &site.nodes[..site.node_count()] {
+            shares[len] = NodeShare::of(p, node, params, n, site.radius, memo);
+            len += 1;
+        }
+    }
+    (shares, len)
+}
+
 /// The node shares of a new pair of the neighbour list, body 1's first: two for two
 /// spheres, one for a wall and a sphere (a wall has no node). Found by the pair's step,
 /// where its contact and particles are at hand (`pair_chunk.rs`), for
@@ -119,17 +140,9 @@ impl PairShares {
         n: &Vec3,
         memo: &mut [FactorMemo; 2],
     ) -> Self {
-        let p = &model.particles;
         let (site1, site2) = sites(model, key);
-        let mut shares = PairShares { shares: [NodeShare::none(); 2], len: 0 };
-        for site in [&site1, &site2] {
-            for &node in &site.nodes[..site.node_count()] {
-                let share = NodeShare::of(p, node, params, n, site.radius, memo);
-                shares.shares[shares.len as usize] = share;
-                shares.len += 1;
-            }
-        }
-        shares
+        let (shares, len) = site_shares(&model.particles, [&site1, &site2], params, n, memo);
+        PairShares { shares, len: len as u8 }
     }
 
     /// The shares, body 1's first.

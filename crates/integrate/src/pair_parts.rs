@@ -37,7 +37,7 @@ pub(crate) enum SumBy {
 
 /// Parts per thread: more parts share the work better between threads when one is slowed
 /// (see `parallel::MAX_CHUNKS_PER_TASK`), and put more particles on the parts' borders
-/// (packing of 10⁵ spheres: 3 % of the spheres with 8 parts, 15 % with 16). With 2 per
+/// (packing of 10⁵ spheres with 8 parts: 7 % of the spheres loaded from several). With 2 per
 /// thread, 2 threads: the same fastest step as with 4 (4.800 against 4.783 ms), but a median
 /// of 6.737 against 5.526 ms over 12 runs on a shared host (`bench/alternate.sh`).
 pub(crate) const PARTS_PER_THREAD: usize = 4;

@@ -243,7 +243,7 @@ impl NeighbourList {
         ended_dissipation: &mut Real,
     ) -> BirthReport {
         let k = Kinematics::of(&model.particles);
-        let pass = PassInputs { model, kinematics: &k, first_wall: self.keys.first_wall(), dt };
+        let pass = PassInputs::new(model, &k, self.keys.first_wall(), dt);
         scratch.position.resize(self.keys.len(), 0);
         let chunks = chunks_for(&mut scratch.chunks, self.keys.len());
         self.keys
@@ -276,7 +276,7 @@ impl NeighbourList {
         mut sink: impl FnMut(Sink<'_>),
     ) -> BirthReport {
         let k = Kinematics::of(&model.particles);
-        let pass = PassInputs { model, kinematics: &k, first_wall: self.keys.first_wall(), dt };
+        let pass = PassInputs::new(model, &k, self.keys.first_wall(), dt);
         let chunks = chunks_for(&mut scratch.chunks, self.keys.len());
         let each = self.keys.ids().chunks(PAIR_CHUNK).zip(self.slots.chunks_mut(PAIR_CHUNK));
         let each = each.zip(self.blocks.chunks_mut(PAIR_CHUNK / BLOCK)).zip(chunks.iter_mut());

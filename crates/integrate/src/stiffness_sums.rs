@@ -7,10 +7,9 @@
 //! estimate runs every 10 steps while contacts appear; on one thread it was a twentieth of
 //! the two-thread step of the 10⁵-sphere packing (issue 14).
 
-use crate::contact::Contact;
 use crate::contact_list::Contacts;
 use crate::dashpots::FactorMemo;
-use crate::fresh_shares::{contact_increments, NodeShare, PairShares};
+use crate::fresh_shares::{contact_increments, site_shares, NodeShare, PairShares};
 use crate::gather::{fits_codes, Entry, LoadIndex};
 use crate::links::Links;
 use crate::neighbours::{merged_fresh, Pick};
@@ -164,24 +163,6 @@ pub(crate) fn add_per_particle(
     true
 }
 
-/// The shares of the nodes of a new general contact's two sites, site 1's first (at most 3
-/// each), and how many there are.
-fn general_shares(
-    c: &Contact,
-    p: &Particles,
-    memo: &mut [FactorMemo; 2],
-) -> ([NodeShare; 6], usize) {
-    let mut shares = [NodeShare::none(); 6];
-    let mut len = 0;
-    for site in [&c.site1, &c.site2] {
-        for &node in &site.nodes[..site.node_count()] {
-            shares[len] = NodeShare::of(p, node, &c.params, &c.state.normal, site.radius, memo);
-            len += 1;
-        }
-    }
-    (shares, len)
-}
-
 /// Adds the stiffness of the contacts made at this step (`fresh`, indices into the general
 /// list, and `fresh_pairs`, into the neighbour list, whose node shares their step found:
 /// `pair_shares`, in the same order) to `k`, in key order, and returns the lowest critical
@@ -207,7 +188,10 @@ pub(crate) fn add_fresh(
     for pick in merged_fresh(&contacts.list, fresh, &contacts.pairs, fresh_pairs) {
         match pick {
             Pick::General(i) => {
-                let (shares, len) = general_shares(&contacts.list[i], p, &mut memo);
+                let c = &contacts.list[i];
+                let (params, normal) = (&c.params, &c.state.normal);
+                let sites = [&c.site1, &c.site2];
+                let (shares, len) = site_shares::<6>(p, sites, params, normal, &mut memo);
                 shares[..len].iter().for_each(&mut add);
             }
             Pick::Pair(_) => {
