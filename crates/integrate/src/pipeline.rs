@@ -6,7 +6,7 @@
 use crate::collider::Collider;
 use crate::contacts::ContactPipeline;
 use crate::integrator::StepWork;
-use crate::servo::WallLoads;
+use crate::servo::WallLoadsAtStep;
 use crate::state::State;
 use crate::timers::Timers;
 use flexdem_elements::{Adjacency, Particles};
@@ -33,8 +33,9 @@ pub(crate) struct Pipeline {
     pub(crate) external_force: Vec<Vec3>,
     /// Torque of the imposed loads and the hook on each particle.
     pub(crate) external_torque: Vec<Vec3>,
-    /// Force and contact stiffness of the bodies on each wall at the last step.
-    pub(crate) walls: WallLoads,
+    /// Force and contact stiffness of the bodies on each wall at the last step, summed when
+    /// asked for.
+    pub(crate) walls: WallLoadsAtStep,
     /// The leapfrog's per-chunk energy sums (`leapfrog_step`'s buffer).
     pub(crate) step_work: Vec<StepWork>,
     /// Per chunk of the leapfrog, whether its check flagged a particle (its buffer).
@@ -57,10 +58,7 @@ impl Pipeline {
             torque: vec![Vec3::zeros(); n],
             external_force: Vec::new(),
             external_torque: Vec::new(),
-            walls: WallLoads {
-                force: vec![Vec3::zeros(); state.model.walls.len()],
-                stiffness: vec![0.0; state.model.walls.len()],
-            },
+            walls: WallLoadsAtStep::zeros(state.model.walls.len()),
             step_work: Vec::new(),
             step_flags: Vec::new(),
             timers: Timers::default(),

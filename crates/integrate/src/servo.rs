@@ -29,6 +29,7 @@ use crate::pair_passes::LastUpdate;
 use crate::SimulationError;
 use flexdem_geom::{Real, Vec3};
 use serde::{Deserialize, Serialize};
+use std::sync::OnceLock;
 
 /// The relaxation factor `α` of the automatic gain `G = α/(K·dt)`: the fraction of the force
 /// error a stress-controlled wall closes in one step (see the module documentation).
@@ -243,6 +244,11 @@ pub(crate) struct WallLoads {
 }
 
 impl WallLoads {
+    /// No force and no stiffness on each of `walls` walls.
+    pub(crate) fn zeros(walls: usize) -> Self {
+        WallLoads { force: vec![Vec3::zeros(); walls], stiffness: vec![0.0; walls] }
+    }
+
     /// Sums the force and the stiffness of the contacts on each of `walls` walls (the free
     /// spheres' as their last update, `last`, applied them).
     pub(crate) fn sum(&mut self, contacts: &Contacts, last: &LastUpdate<'_>, walls: usize) {
@@ -258,6 +264,74 @@ impl WallLoads {
             }
         });
     }
+}
+
+/// The walls' loads at the last step, summed when first asked for: by a servo in the step
+/// ([`WallLoadsAtStep::sum_now`]) or by [`crate::Simulation::wall_forces`] after it
+/// ([`WallLoadsAtStep::get_or_sum`]). The step's contacts and the last update of the free
+/// spheres' pairs, which the sum reads, stay as they are until the next step's contact stage
+/// (a change of the model or of the collider rebuilds the pipeline, and with it these loads,
+/// zero again), so either sum is the step's. A run that reads no wall force and steers no
+/// wall never sums them: over the 12 700 wall contacts of the packing of 10⁵ spheres, the
+/// sum read each one's normal and stiffness from its block on one thread, 137–156 µs a step
+/// (3 % of the step at 2 threads).
+#[derive(Debug, Default)]
+pub(crate) struct WallLoadsAtStep {
+    at_step: OnceLock<WallLoads>,
+    /// The buffers of the sum before, reused by `sum_now` (no allocation per step).
+    spare: WallLoads,
+}
+
+impl WallLoadsAtStep {
+    /// Zero on each of `walls` walls (before the first step).
+    pub(crate) fn zeros(walls: usize) -> Self {
+        WallLoadsAtStep {
+            at_step: OnceLock::from(WallLoads::zeros(walls)),
+            spare: WallLoads::default(),
+        }
+    }
+
+    /// Forgets the loads of the step before (at the wall stage of a new step).
+    pub(crate) fn forget(&mut self) {
+        if let Some(loads) = self.at_step.take() {
+            self.spare = loads;
+        }
+    }
+
+    /// The loads of this step, summed now if not yet, in the buffers of the sum before.
+    pub(crate) fn sum_now(
+        &mut self,
+        contacts: &Contacts,
+        last: &LastUpdate<'_>,
+        walls: usize,
+    ) -> &WallLoads {
+        if self.at_step.get().is_none() {
+            let mut loads = std::mem::take(&mut self.spare);
+            loads.sum(contacts, last, walls);
+            let _ = self.at_step.set(loads);
+        }
+        self.at_step.get().expect("just set")
+    }
+
+    /// The loads of the last step, summed now if not yet (from the same contacts and last
+    /// update as in the step).
+    pub(crate) fn get_or_sum(
+        &self,
+        contacts: &Contacts,
+        last: &LastUpdate<'_>,
+        walls: usize,
+    ) -> &WallLoads {
+        self.at_step.get_or_init(|| {
+            let mut loads = WallLoads::default();
+            loads.sum(contacts, last, walls);
+            loads
+        })
+    }
+}
+
+/// Whether a servo steers a wall at `time` (and so reads the walls' loads).
+pub(crate) fn any_servo_at(controls: &[WallControl], time: Real) -> bool {
+    controls.iter().any(|c| c.servo_at(time).is_some())
 }
 
 /// Sets the normal velocity of every stress-controlled wall for the next step (from `time`,
@@ -297,7 +371,53 @@ pub(crate) fn steer_walls(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::{Settings, Simulation};
+    use flexdem_contact::Material;
     use flexdem_elements::Wall;
+
+    /// Two spheres between a floor (wall 0) and a platen (wall 1, a servo pressing down),
+    /// under gravity, at 2 threads (the pairs' parallel update).
+    fn pressed_column() -> Simulation {
+        let mut model = flexdem_elements::Model::new();
+        let m = model.add_material(Material::new(1e7, 0.3, 2000.0, 0.5).unwrap()).unwrap();
+        let r = 0.01;
+        model.add_wall(Vec3::zeros(), Vec3::z(), m).unwrap();
+        model.add_wall(Vec3::new(0.0, 0.0, 4.0 * r), -Vec3::z(), m).unwrap();
+        model.add_sphere(Vec3::new(0.0, 0.0, r), r, m).unwrap();
+        model.add_sphere(Vec3::new(1e-4 * r, 0.0, 3.0 * r), r, m).unwrap();
+        let gravity = Vec3::new(0.0, 0.0, -9.81);
+        let mut sim = Simulation::new(model, Settings { gravity, ..Settings::default() }).unwrap();
+        let servo =
+            StressControl { target: 1e4, area: 4e-4, gain: None, max_speed: 0.01, section: None };
+        sim.set_wall_control(1, WallControl::Stress(servo)).unwrap();
+        sim
+    }
+
+    /// The loads a servo summed in the step are those summed from the state after it, as
+    /// `Simulation::wall_forces` sums them when no servo acts: the contacts and the pairs'
+    /// last update stay as the wall stage saw them until the next step.
+    #[test]
+    fn the_walls_loads_summed_after_the_step_are_the_steps() {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build().unwrap();
+        pool.install(|| {
+            let mut sim = pressed_column();
+            let mut loaded = 0;
+            for _ in 0..300 {
+                sim.step().unwrap();
+                let in_step = sim.pipeline.walls.at_step.get().expect("summed for the servo");
+                let last = sim.state.contacts.pairs.last_update(&sim.pipeline.contacts.pairs);
+                let mut after = WallLoads::default();
+                after.sum(&sim.state.contacts, &last, 2);
+                assert_eq!(in_step, &after);
+                assert_eq!(sim.wall_forces(), &in_step.force[..]);
+                loaded += usize::from(after.force[1] != Vec3::zeros());
+            }
+            assert!(loaded > 100, "the platen carried a force at {loaded} steps of 300");
+            // a change of the model rebuilds the pipeline: zero until the next step
+            sim.edit_model(|_| ()).unwrap();
+            assert_eq!(sim.wall_forces(), &[Vec3::zeros(); 2]);
+        });
+    }
 
     fn servo(gain: Option<Real>) -> StressControl {
         StressControl { target: 1e5, area: 0.01, gain, max_speed: 0.1, section: None }

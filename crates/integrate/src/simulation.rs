@@ -281,8 +281,11 @@ impl Simulation {
     /// The force the bodies put on each wall at the last step (N): `−Σ F_wall→body` over its
     /// contacts; its normal part `−F·n` is ≥ 0 in compression ([`crate::normal_force`]).
     /// Zero before the first step of a simulation built or restored.
+    /// Summed when first asked for after a step (the step sums them only for a servo).
     pub fn wall_forces(&self) -> &[Vec3] {
-        &self.pipeline.walls.force
+        let last = self.state.contacts.pairs.last_update(&self.pipeline.contacts.pairs);
+        let walls = self.state.model.walls.len();
+        &self.pipeline.walls.get_or_sum(&self.state.contacts, &last, walls).force
     }
 
     /// The index of wall `w` if it exists.

@@ -8,7 +8,7 @@ use crate::integrator::{leapfrog_step_checked, Leapfrog, StepWork};
 use crate::links::LinkUpdate;
 use crate::offsets::release_offsets;
 use crate::pressure::add_pressure_forces;
-use crate::servo::steer_walls;
+use crate::servo::{any_servo_at, steer_walls, WallLoads};
 use crate::settings::TimeStep;
 use crate::simulation::Simulation;
 use crate::step_work::Checks;
@@ -235,24 +235,27 @@ impl Simulation {
             || self.pipeline.force_hook.is_some()
     }
 
-    /// Walls: the force and the contact stiffness of the bodies on each wall at t (kept for
-    /// [`Simulation::wall_forces`]), then the servo of each stress-controlled wall sets its
-    /// normal velocity for the step from t to t + dt (see `servo.rs`). Returns the power of
-    /// the walls at t with the velocities they moved with over the step before, and with the
-    /// velocities they move with over the step after: the two halves of their trapezoidal
-    /// work (timed with the integration, which moves the walls).
+    /// Walls: the force and the contact stiffness of the bodies on each wall at t (summed
+    /// here when a servo acts, else when [`Simulation::wall_forces`] asks), then the servo of
+    /// each stress-controlled wall sets its normal velocity for the step from t to t + dt
+    /// (see `servo.rs`). Returns the power of the walls at t with the velocities they moved
+    /// with over the step before, and with the velocities they move with over the step
+    /// after: the two halves of their trapezoidal work (timed with the integration, which
+    /// moves the walls).
     fn wall_stage(&mut self, dt: Real) -> WallPower {
-        let walls = self.state.model.walls.len();
-        let last = self.state.contacts.pairs.last_update(&self.pipeline.contacts.pairs);
-        self.pipeline.walls.sum(&self.state.contacts, &last, walls);
+        self.pipeline.walls.forget();
         let before = self.wall_power();
-        let steered = steer_walls(
-            &mut self.state.model,
-            &self.state.wall_controls,
-            &self.pipeline.walls,
-            self.state.clock.time,
-            dt,
-        );
+        let time = self.state.clock.time;
+        let controls = &self.state.wall_controls;
+        // the loads are summed for a servo, else when asked for (`Simulation::wall_forces`)
+        let steered = if any_servo_at(controls, time) {
+            let walls = self.state.model.walls.len();
+            let last = self.state.contacts.pairs.last_update(&self.pipeline.contacts.pairs);
+            let loads = self.pipeline.walls.sum_now(&self.state.contacts, &last, walls);
+            steer_walls(&mut self.state.model, controls, loads, time, dt)
+        } else {
+            steer_walls(&mut self.state.model, controls, &WallLoads::default(), time, dt)
+        };
         let after = if steered { self.wall_power() } else { before };
         self.pipeline.timers.lap(Stage::Integration);
         WallPower { before, after }
