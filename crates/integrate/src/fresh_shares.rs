@@ -73,17 +73,18 @@ impl NodeShare {
         NodeShare { node, free: p.blocked[i] != Dofs::ALL, increments, mass, inertia }
     }
 
-    /// Adds the share to its node's sums in `k`; returns the node's critical step after it,
-    /// `√(2·min(m/K_trans, J/K_rot))` with the largest components of its sums (infinite for
-    /// no stiffness, or for a held node, whose step is not counted).
+    /// Adds the share to its node's sums if `k` holds them; returns the node's critical step
+    /// after it, `√(2·min(m/K_trans, J/K_rot))` with the largest components of its sums
+    /// (infinite for no stiffness, or for a held node, whose step is not counted), or None
+    /// for a node out of `k`'s range.
     #[inline]
-    pub(crate) fn add_to(&self, k: &mut StiffnessSums) -> Real {
-        let n = self.node as usize;
-        let (t, r) = (&mut k.translational[n], &mut k.rotational[n]);
+    pub(crate) fn add_to(&self, k: &mut SumsRange<'_>) -> Option<Real> {
+        let n = (self.node as usize).checked_sub(k.first)?;
+        let (t, r) = (k.translational.get_mut(n)?, &mut k.rotational[n]);
         *t += self.increments.0;
         *r += self.increments.1;
         if !self.free {
-            return Real::INFINITY;
+            return Some(Real::INFINITY);
         }
         let (kt, kr) = (t.max(), r.max());
         let mut ratio = Real::INFINITY;
@@ -93,7 +94,26 @@ impl NodeShare {
         if kr > 0.0 {
             ratio = ratio.min(self.inertia / kr);
         }
-        (2.0 * ratio).sqrt()
+        Some((2.0 * ratio).sqrt())
+    }
+}
+
+/// The stiffness sums of the particles from `first` on, as many as the slices hold: the part
+/// of [`StiffnessSums`] one task of `stiffness_sums::add_fresh` adds to.
+pub(crate) struct SumsRange<'a> {
+    /// The first particle's index.
+    pub(crate) first: usize,
+    /// Their translational sums.
+    pub(crate) translational: &'a mut [Vec3],
+    /// Their rotational sums (as many).
+    pub(crate) rotational: &'a mut [Vec3],
+}
+
+impl<'a> SumsRange<'a> {
+    /// Every particle's sums.
+    pub(crate) fn whole(k: &'a mut StiffnessSums) -> Self {
+        debug_assert_eq!(k.translational.len(), k.rotational.len());
+        SumsRange { first: 0, translational: &mut k.translational, rotational: &mut k.rotational }
     }
 }
 

@@ -122,8 +122,9 @@ pub(crate) struct PairScratch {
     pub(crate) chunks: Vec<ChunkOut>,
     /// Indices of the pairs that started touching at the last update.
     pub(crate) fresh: Vec<usize>,
-    /// Their nodes' shares of their stiffness, in the same order.
-    pub(crate) fresh_shares: Vec<PairShares>,
+    /// The chunks of the last update (the first ones of `chunks`; those past them hold
+    /// records of an update of more candidates).
+    used: usize,
     /// Per candidate pair, where its outcome is in its chunk's list at the last parallel
     /// update (written for the pairs it stepped only).
     pub(crate) position: Vec<u32>,
@@ -198,16 +199,25 @@ pub(crate) fn chunks_for(chunks: &mut Vec<ChunkOut>, candidates: usize) -> &mut 
 }
 
 impl PairScratch {
+    /// The node shares of the pairs that started touching at the last update, in the order
+    /// of `fresh`: read from the chunks' records where their steps wrote them (gathered into
+    /// one array, they were 137 kB to copy at a step of the packing of 10⁵ spheres settling).
+    pub(crate) fn fresh_shares(
+        &self,
+    ) -> impl Iterator<Item = &PairShares> + Clone + Send + Sync + '_ {
+        self.chunks[..self.used.min(self.chunks.len())].iter().flat_map(|c| &c.book.fresh_shares)
+    }
+
     /// The step's sums from the chunks', in chunk order: the report, the ended pairs'
-    /// friction added to `ended_dissipation`, and the fresh pairs gathered in order.
+    /// friction added to `ended_dissipation`, and the fresh pairs gathered in order (their
+    /// shares stay in the chunks: [`PairScratch::fresh_shares`]).
     fn totals(&mut self, used: usize, ended_dissipation: &mut Real) -> (BirthReport, ChunkSums) {
         let mut total = ChunkSums::default();
         self.fresh.clear();
-        self.fresh_shares.clear();
+        self.used = used;
         for c in &mut self.chunks[..used] {
             c.book.sums.add_to(&mut total);
             self.fresh.extend_from_slice(&c.book.fresh);
-            self.fresh_shares.extend_from_slice(&c.book.fresh_shares);
             trim(&mut c.book.fresh);
             trim(&mut c.book.fresh_shares);
             trim(&mut c.book.pushed);
@@ -215,7 +225,6 @@ impl PairScratch {
             trim(&mut c.outcomes);
         }
         trim(&mut self.fresh);
-        trim(&mut self.fresh_shares);
         *ended_dissipation += total.ended_dissipation;
         let report = BirthReport {
             born_deep: total.born_deep,

@@ -366,7 +366,7 @@ impl Simulation {
         }
         let (general, pairs) = (&fresh.fresh, &fresh.pairs.fresh);
         let k = &mut self.state.clock.stiffness;
-        let shares = &fresh.pairs.fresh_shares;
+        let shares = fresh.pairs.fresh_shares();
         let contacts = &self.state.contacts;
         let lowest = add_fresh(k, contacts, general, pairs, shares, &self.state.model);
         if lowest < self.state.clock.critical_dt {
