@@ -34,17 +34,18 @@ pub(crate) const DT_GROWTH: Real = 1.1;
 impl Simulation {
     /// Estimates the critical step from the links (and later the contacts) and sets `dt`.
     pub fn update_time_step(&mut self) -> Result<(), SimulationError> {
-        // the last estimate's sums, zeroed: their memory serves again
+        // the last estimate's sums: their memory serves again
         let mut k = std::mem::take(&mut self.state.clock.stiffness);
-        k.reset(self.state.model.particles.len());
         let (links, contacts) = (&self.state.links, &self.state.contacts);
         let model = &self.state.model;
         let index = &mut self.pipeline.contacts.load_index;
-        // per particle in parallel with more than one thread (the same sums)
+        // per particle in parallel with more than one thread (the same sums, each written
+        // whole: no zeroing first)
         let parallel = rayon::current_num_threads() > 1
             && model.particles.len() >= MIN_PARALLEL_SUMS
             && add_per_particle(&mut k, links, contacts, model, index);
         if !parallel {
+            k.reset(model.particles.len());
             add_in_order(&mut k, links, contacts, model);
         }
         self.state.clock.dt_updated_at = self.state.clock.steps;
