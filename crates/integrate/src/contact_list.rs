@@ -4,7 +4,7 @@
 //! and over every contact in key order).
 
 use crate::contact::Contact;
-use crate::neighbours::{merged, sites, NeighbourList, Pick};
+use crate::neighbours::{merged, sites, ContactKey, NeighbourList, Pick};
 use crate::pair_passes::LastUpdate;
 use flexdem_contact::FrictionalParams;
 use flexdem_elements::virtual_sphere::{Feature, Site};
@@ -132,10 +132,12 @@ impl Contacts {
     }
 
     /// Calls `f(site 1, site 2, law constants, normal)` on every contact in key order, none
-    /// made (the time step's stiffness sums: a free sphere's contact is not cloned).
+    /// made (the time step's stiffness sums: a free sphere's contact is not cloned), but on
+    /// the free spheres' pairs whose key is not `wanted` (their contact is then not read).
     pub(crate) fn for_each_law(
         &self,
         model: &Model,
+        wanted: impl Fn(&ContactKey) -> bool,
         mut f: impl FnMut(&Site, &Site, &FrictionalParams, &Vec3),
     ) {
         for pick in merged(&self.list, &self.pairs) {
@@ -145,6 +147,9 @@ impl Contacts {
                     f(&c.site1, &c.site2, &c.params, &c.state.normal);
                 }
                 Pick::Pair(n) => {
+                    if !wanted(&self.pairs.keys.get(n)) {
+                        continue;
+                    }
                     let (key, c) = self.pairs.get(n);
                     let (site1, site2) = sites(model, &key);
                     f(&site1, &site2, &c.params, &c.state.normal);

@@ -115,6 +115,20 @@ impl<'a> SumsRange<'a> {
         debug_assert_eq!(k.translational.len(), k.rotational.len());
         SumsRange { first: 0, translational: &mut k.translational, rotational: &mut k.rotational }
     }
+
+    /// Whether particle `i`'s sums are in the range.
+    #[inline]
+    pub(crate) fn holds(&self, i: usize) -> bool {
+        i.wrapping_sub(self.first) < self.translational.len()
+    }
+
+    /// Adds increments `(t, r)` to particle `i`'s sums (in the range).
+    #[inline]
+    pub(crate) fn add(&mut self, i: usize, (t, r): (Vec3, Vec3)) {
+        let k = i - self.first;
+        self.translational[k] += t;
+        self.rotational[k] += r;
+    }
 }
 
 /// The shares of the nodes of a new contact's `sites` (body 1's first; at most `N` in all),

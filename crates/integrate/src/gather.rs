@@ -181,23 +181,6 @@ impl LoadIndex {
         });
     }
 
-    /// Indexes the sites' nodes of the general contacts `list` (their law's stiffness goes to
-    /// each node of each site, `stiffness_sums.rs`) for `particles` particles, with the codes
-    /// of [`LoadIndex::index_general`]: `8·n + slot`, site 1's nodes at slots 0–2, site 2's
-    /// at 3–5 (what the loads' index holds, made from the contacts themselves: no update
-    /// need have run).
-    pub(crate) fn index_general_sites(&mut self, list: &[Contact], particles: usize) {
-        let entries = list.iter().enumerate().flat_map(|(n, c)| {
-            let code = 8 * n as u32;
-            let sites = [(&c.site1, 0u32), (&c.site2, 3)];
-            sites.into_iter().flat_map(move |(site, first)| {
-                (0..site.node_count() as u32)
-                    .map(move |k| (site.nodes[k as usize], code + first + k))
-            })
-        });
-        self.index_general_entries(entries, particles);
-    }
-
     /// Particle `i`'s entries among the candidate pairs (`2·n + side`), in pair order. The
     /// pairs' index must be up to date ([`LoadIndex::index_pairs`]).
     #[inline]

@@ -420,16 +420,6 @@ impl Links {
         })
     }
 
-    /// The links of node `i`, in link order (none for a particle in no link).
-    #[inline]
-    pub(crate) fn links_of(&self, i: usize) -> impl Iterator<Item = usize> + '_ {
-        let codes = match (self.node_offsets.get(i), self.node_offsets.get(i + 1)) {
-            (Some(&s), Some(&e)) => &self.node_loads[s as usize..e as usize],
-            _ => &[],
-        };
-        codes.iter().map(|&code| (code / 2) as usize)
-    }
-
     /// Adds the last update's loads to the per-particle `force` and `torque` sums, each
     /// node's in link order: for a structure of one chunk (a net, a cantilever) link after
     /// link on this thread ([`Links::add_loads_in_link_order`]), where the per-node sum's

@@ -12,7 +12,7 @@ use crate::servo::{any_servo_at, steer_walls, WallLoads};
 use crate::settings::TimeStep;
 use crate::simulation::Simulation;
 use crate::step_work::Checks;
-use crate::stiffness_sums::{add_fresh, add_in_order, add_per_particle, MIN_PARALLEL_SUMS};
+use crate::stiffness_sums::{add_fresh, add_in_order, add_in_ranges, MIN_PARALLEL_SUMS};
 use crate::time_step::{critical_step_from_stiffness, p_wave_time_step};
 use crate::timers::Stage;
 use crate::SimulationError;
@@ -38,13 +38,10 @@ impl Simulation {
         let mut k = std::mem::take(&mut self.state.clock.stiffness);
         let (links, contacts) = (&self.state.links, &self.state.contacts);
         let model = &self.state.model;
-        let index = &mut self.pipeline.contacts.load_index;
-        // per particle in parallel with more than one thread (the same sums, each written
-        // whole: no zeroing first)
-        let parallel = rayon::current_num_threads() > 1
-            && model.particles.len() >= MIN_PARALLEL_SUMS
-            && add_per_particle(&mut k, links, contacts, model, index);
-        if !parallel {
+        if rayon::current_num_threads() > 1 && model.particles.len() >= MIN_PARALLEL_SUMS {
+            // per range of particles in parallel (the same sums)
+            add_in_ranges(&mut k, links, contacts, model);
+        } else {
             k.reset(model.particles.len());
             add_in_order(&mut k, links, contacts, model);
         }

@@ -1,31 +1,27 @@
 //! The per-particle stiffness sums of the time-step estimate (`time_step.rs`, model.md §4):
 //! every intact link on its two nodes, in link order, then every contact on the nodes of its
 //! two sites, in the contacts' key order. Summed in one pass over the links and the
-//! contacts (`add_in_order`, one thread), or per particle in parallel (`add_per_particle`:
-//! each particle's links from the links' node index, its contacts from the loads' index,
-//! `gather.rs`), with the same additions in the same order: the same bits either way. The
-//! estimate runs every 10 steps while contacts appear; on one thread it was a twentieth of
-//! the two-thread step of the 10⁵-sphere packing (issue 14).
+//! contacts (`add_in_order`, one thread), or in parallel per range of particles
+//! (`add_in_ranges`: each task the same pass, adding to its own particles only), with the
+//! same additions in the same order: the same bits either way. The estimate runs every 10
+//! steps while contacts appear; on one thread it was a twentieth of the two-thread step of
+//! the 10⁵-sphere packing (issue 14).
 
 use crate::contact_list::Contacts;
 use crate::dashpots::FactorMemo;
 use crate::fresh_shares::{contact_increments, site_shares, NodeShare, PairShares, SumsRange};
-use crate::gather::{fits_codes, Entry, LoadIndex};
 use crate::links::Links;
-use crate::neighbours::{merged_fresh, Pick};
+use crate::neighbours::{merged_fresh, ContactKey, Pick};
 use crate::time_step::{spring_increments, StiffnessSums};
 use flexdem_contact::{FrictionalParams, LinkSpring, LinkStatus};
-use flexdem_elements::virtual_sphere::Site;
+use flexdem_elements::virtual_sphere::{Feature, Site};
 use flexdem_elements::{Model, Particles};
 use flexdem_geom::{Real, Vec3};
 use rayon::prelude::*;
 
-/// Particles per parallel task (fewer in the tests, whose scenes are small: several tasks).
-const CHUNK: usize = if cfg!(test) { 32 } else { 1024 };
-
 /// Below this many particles the sums are taken on one thread (a small scene's estimate
-/// costs less than the tasks).
-pub(crate) const MIN_PARALLEL_SUMS: usize = 4 * CHUNK;
+/// costs less than the tasks; fewer in the tests, whose scenes are small).
+pub(crate) const MIN_PARALLEL_SUMS: usize = if cfg!(test) { 64 } else { 4096 };
 
 /// Link `l`'s springs as the estimate counts them, unless it is broken: its unit axis
 /// (x for coincident nodes), half its length (the shear's lever arm) and its spring.
@@ -45,29 +41,10 @@ fn link_spring<'a>(
     Some((n, 0.5 * len, links.spring_of(l)))
 }
 
-/// Adds increments `(t, r)` to one particle's sums `(translational, rotational)`.
-#[inline]
-fn add_increments((translational, rotational): (&mut Vec3, &mut Vec3), (t, r): (Vec3, Vec3)) {
-    *translational += t;
-    *rotational += r;
-}
-
-/// Adds [`contact_increments`] to one node's sums.
-#[inline]
-fn add_contact_on_node(
-    sums: (&mut Vec3, &mut Vec3),
-    mass: Real,
-    params: &FrictionalParams,
-    n: &Vec3,
-    radius: Real,
-    memo: &mut [FactorMemo; 2],
-) {
-    add_increments(sums, contact_increments(mass, params, n, radius, memo));
-}
-
-/// Adds a contact's stiffness to every node of its two sites ([`add_contact_on_node`]).
+/// Adds a contact's stiffness to every node of its two sites that `k` holds
+/// ([`contact_increments`]; the others are passed over).
 fn add_contact_stiffness(
-    k: &mut StiffnessSums,
+    k: &mut SumsRange<'_>,
     sites: [&Site; 2],
     params: &FrictionalParams,
     n: &Vec3,
@@ -75,10 +52,11 @@ fn add_contact_stiffness(
     memo: &mut [FactorMemo; 2],
 ) {
     for site in sites {
-        for slot in 0..site.node_count() {
-            let node = site.nodes[slot] as usize;
-            let sums = (&mut k.translational[node], &mut k.rotational[node]);
-            add_contact_on_node(sums, p.mass[node], params, n, site.radius, memo);
+        for &node in &site.nodes[..site.node_count()] {
+            let node = node as usize;
+            if k.holds(node) {
+                k.add(node, contact_increments(p.mass[node], params, n, site.radius, memo));
+            }
         }
     }
 }
@@ -91,81 +69,67 @@ pub(crate) fn add_in_order(
     contacts: &Contacts,
     model: &Model,
 ) {
-    let p = &model.particles;
-    for l in 0..links.nodes.len() {
-        let Some((n, lever, s)) = link_spring(links, p, l) else { continue };
-        let s = &s.stiffness;
-        for i in links.nodes[l] {
-            k.add(i as usize, &n, s.kn, s.ks, lever, s.kt, s.kb);
-        }
-    }
-    let mut memo = Default::default();
-    contacts.for_each_law(model, |site1, site2, params, normal| {
-        add_contact_stiffness(k, [site1, site2], params, normal, p, &mut memo)
-    });
+    add_in_order_to(&mut SumsRange::whole(k), links, contacts, model);
 }
 
-/// [`add_in_order`]'s sums, per particle in parallel, when the contacts fit the index's codes
-/// (`index` is brought up to date for them): `k` is sized to the particles and every sum is
-/// written whole, from zero (what it held before does not count; zeroing the sums of 10⁵
-/// particles first, 4.8 MB, was a serial memset at every estimate). False, with nothing
-/// written, when the contacts do not fit.
-pub(crate) fn add_per_particle(
+/// [`add_in_order`]'s sums, one task per thread over its own range of particles, into `k`
+/// (sized here to the particles; what it held before does not count, each task zeroes its
+/// range). Each task passes over every link and every contact in [`add_in_order`]'s order
+/// and adds those of its nodes: each node gets the same additions in the same order, the
+/// same bits as one pass. What a task reads of a link or a contact whose nodes are all
+/// another's is its nodes (a free sphere's pair: its key), and it works out only its own
+/// nodes' springs. (Summed per particle from an index of its links and contacts, each
+/// link's spring was worked out twice, the contacts were read in the order of the
+/// particles, and the general contacts' index was built on one thread: on the membrane of
+/// 10⁵ PFacets the estimate took 5.4 ms at 2 threads, against 4.0 in one pass.)
+pub(crate) fn add_in_ranges(
     k: &mut StiffnessSums,
     links: &Links,
     contacts: &Contacts,
     model: &Model,
-    index: &mut LoadIndex,
-) -> bool {
-    let p = &model.particles;
-    let particles = p.len();
-    if !fits_codes(contacts.list.len(), contacts.pairs.keys().len()) {
-        return false;
-    }
-    index.index_pairs(&contacts.pairs, particles);
-    index.index_general_sites(&contacts.list, particles);
-    let index = &*index;
+) {
+    let particles = model.particles.len();
     k.translational.resize(particles, Vec3::zeros());
     k.rotational.resize(particles, Vec3::zeros());
-    let (list, pairs) = (&contacts.list, &contacts.pairs);
-    let chunks = k.translational.par_chunks_mut(CHUNK).zip(k.rotational.par_chunks_mut(CHUNK));
-    chunks.enumerate().for_each(|(c, (translational, rotational))| {
-        let mut memo = Default::default();
-        for (j, (t, r)) in translational.iter_mut().zip(rotational).enumerate() {
-            let i = c * CHUNK + j;
-            // summed in registers from zero, stored once (the same additions as onto zeros)
-            let (mut t_sum, mut r_sum) = (Vec3::zeros(), Vec3::zeros());
-            for l in links.links_of(i) {
-                if let Some((n, lever, s)) = link_spring(links, p, l) {
-                    let s = &s.stiffness;
-                    let increments = spring_increments(&n, s.kn, s.ks, lever, s.kt, s.kb);
-                    add_increments((&mut t_sum, &mut r_sum), increments);
-                }
-            }
-            let mass = p.mass[i];
-            index.in_key_order(i, list, pairs, |entry| {
-                let sums = (&mut t_sum, &mut r_sum);
-                match entry {
-                    Entry::General(code) => {
-                        let (c, slot) = (&list[(code / 8) as usize], code % 8);
-                        let site = if slot < 3 { &c.site1 } else { &c.site2 };
-                        let normal = &c.state.normal;
-                        add_contact_on_node(sums, mass, &c.params, normal, site.radius, &mut memo);
-                    }
-                    Entry::Pair(code) => {
-                        // (a free sphere's site is the sphere: its radius is the lever arm)
-                        if let Some(c) = pairs.contact_at((code / 2) as usize) {
-                            let (params, normal, radius) =
-                                (&c.params, &c.state.normal, p.radius[i]);
-                            add_contact_on_node(sums, mass, params, normal, radius, &mut memo);
-                        }
-                    }
-                }
-            });
-            (*t, *r) = (t_sum, r_sum);
-        }
+    let per = particles.div_ceil(rayon::current_num_threads()).max(1);
+    let (translational, rotational) = (&mut k.translational, &mut k.rotational);
+    let ranges = translational.par_chunks_mut(per).zip(rotational.par_chunks_mut(per));
+    ranges.enumerate().for_each(|(r, (translational, rotational))| {
+        translational.fill(Vec3::zeros());
+        rotational.fill(Vec3::zeros());
+        let mut range = SumsRange { first: r * per, translational, rotational };
+        add_in_order_to(&mut range, links, contacts, model);
     });
-    true
+}
+
+/// [`add_in_order`] onto the particles of `k`'s range.
+fn add_in_order_to(k: &mut SumsRange<'_>, links: &Links, contacts: &Contacts, model: &Model) {
+    let p = &model.particles;
+    for l in 0..links.nodes.len() {
+        let [a, b] = links.nodes[l].map(|n| n as usize);
+        if !k.holds(a) && !k.holds(b) {
+            continue;
+        }
+        let Some((n, lever, s)) = link_spring(links, p, l) else { continue };
+        let s = &s.stiffness;
+        let increments = spring_increments(&n, s.kn, s.ks, lever, s.kt, s.kb);
+        for i in [a, b] {
+            if k.holds(i) {
+                k.add(i, increments);
+            }
+        }
+    }
+    let mut memo = Default::default();
+    let (first, end) = (k.first, k.first + k.translational.len());
+    let holds = |i: u32| (first..end).contains(&(i as usize));
+    let wanted = |key: &ContactKey| match *key {
+        (Feature::Particle(a), Feature::Particle(b)) => holds(a) || holds(b),
+        (_, Feature::Particle(b)) => holds(b),
+        _ => true,
+    };
+    contacts.for_each_law(model, wanted, |site1, site2, params, normal| {
+        add_contact_stiffness(k, [site1, site2], params, normal, p, &mut memo)
+    });
 }
 
 /// Below this many new contacts in a step, [`add_fresh`] adds their stiffness on one thread.
@@ -284,42 +248,46 @@ mod tests {
         model
     }
 
-    /// After a few steps of [`heap_on_membrane`], the per-particle sums, with two threads,
-    /// are the one-pass sums to the bit.
+    /// After a few steps of [`heap_on_membrane`], the sums per range of particles, with 2 to
+    /// 5 threads, are the one-pass sums to the bit, links and contacts whose nodes are in two
+    /// ranges included.
     #[test]
-    fn the_per_particle_sums_are_the_one_pass_sums() {
+    fn the_sums_per_range_are_the_one_pass_sums() {
         let model = heap_on_membrane();
         let settings = Settings { gravity: Vec3::new(0.0, 0.0, -9.81), ..Settings::default() };
-        let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build().unwrap();
-        pool.install(|| {
-            let mut sim = Simulation::new(model, settings).unwrap();
-            sim.run(5).unwrap();
-            let (state, index) = (&sim.state, &mut sim.pipeline.contacts.load_index);
-            let (links, contacts, model) = (&state.links, &state.contacts, &state.model);
-            let walls = contacts.pairs.touching().filter(|(key, _)| {
-                matches!(key.0, flexdem_elements::virtual_sphere::Feature::Wall(_))
-            });
-            let counts = (links.intact(), contacts.list.len(), contacts.pairs.len(), walls.count());
-            assert!(
-                counts.0 > 0 && counts.1 > 0 && counts.2 > counts.3 && counts.3 > 0,
-                "{counts:?}"
-            );
-            assert!(contacts.list.iter().all(|c| c.params.is_damped()));
-            let n = model.particles.len();
-            assert!(n > 3 * CHUNK, "several tasks: {n} particles");
-            let mut one_pass = StiffnessSums::new(n);
-            add_in_order(&mut one_pass, links, contacts, model);
-            // the per-particle sums overwrite what they held, and are sized to the particles
+        let mut sim = Simulation::new(model, settings).unwrap();
+        sim.run(5).unwrap();
+        let state = &sim.state;
+        let (links, contacts, model) = (&state.links, &state.contacts, &state.model);
+        let walls = contacts.pairs.touching().filter(|(key, _)| matches!(key.0, Feature::Wall(_)));
+        let counts = (links.intact(), contacts.list.len(), contacts.pairs.len(), walls.count());
+        assert!(counts.0 > 0 && counts.1 > 0 && counts.2 > counts.3 && counts.3 > 0, "{counts:?}");
+        assert!(contacts.list.iter().all(|c| c.params.is_damped()));
+        let n = model.particles.len();
+        assert!(n >= MIN_PARALLEL_SUMS, "{n} particles");
+        let mut one_pass = StiffnessSums::new(n);
+        add_in_order(&mut one_pass, links, contacts, model);
+        assert!(one_pass.translational.iter().all(|t| t.max() > 0.0), "every particle counted");
+        let bits = |k: &StiffnessSums| -> Vec<[u64; 6]> {
+            let both = k.translational.iter().zip(&k.rotational);
+            both.map(|(t, r)| [t.x, t.y, t.z, r.x, r.y, r.z].map(Real::to_bits)).collect()
+        };
+        let (mut split_links, mut split_contacts) = (0, 0);
+        for threads in 2..=5 {
+            let per = n.div_ceil(threads);
+            let range = |i: u32| i as usize / per;
+            split_links += links.nodes.iter().filter(|[a, b]| range(*a) != range(*b)).count();
+            let sites = contacts.list.iter().map(|c| [&c.site1, &c.site2]);
+            let ranges = sites.map(|s| s.map(|s| range(s.nodes[0])));
+            split_contacts += ranges.filter(|[a, b]| a != b).count();
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            // the sums overwrite what they held, and are sized to the particles
             let old = vec![Vec3::repeat(7.0); n - 1];
-            let mut per_particle = StiffnessSums { translational: old.clone(), rotational: old };
-            assert!(add_per_particle(&mut per_particle, links, contacts, model, index));
-            let bits = |k: &StiffnessSums| -> Vec<[u64; 6]> {
-                let both = k.translational.iter().zip(&k.rotational);
-                both.map(|(t, r)| [t.x, t.y, t.z, r.x, r.y, r.z].map(Real::to_bits)).collect()
-            };
-            assert_eq!(bits(&one_pass), bits(&per_particle));
-            assert!(one_pass.translational.iter().all(|t| t.max() > 0.0), "every particle counted");
-        });
+            let mut per_range = StiffnessSums { translational: old.clone(), rotational: old };
+            pool.install(|| add_in_ranges(&mut per_range, links, contacts, model));
+            assert_eq!(bits(&one_pass), bits(&per_range), "{threads} threads");
+        }
+        assert!(split_links > 0 && split_contacts > 0, "{split_links} {split_contacts}");
     }
 
     /// A contact's two sites, law constants and normal, from the contacts.
@@ -375,7 +343,8 @@ mod tests {
             for pick in merged_fresh(&contacts.list, general, &contacts.pairs, pairs) {
                 let ((site1, site2), params, normal) = law_of(pick, contacts, model);
                 let k = &mut one_pass;
-                add_contact_stiffness(k, [&site1, &site2], &params, &normal, p, &mut memo);
+                let whole = &mut SumsRange::whole(k);
+                add_contact_stiffness(whole, [&site1, &site2], &params, &normal, p, &mut memo);
                 for site in [&site1, &site2] {
                     for &n in &site.nodes[..site.node_count()] {
                         let n = n as usize;
