@@ -53,7 +53,11 @@ impl ContactPipeline {
         let zero = [NodeLoad { node: 0, force: Vec3::zeros(), torque: Vec3::zeros() }; 6];
         self.loads.resize(contacts.list.len(), zero);
         self.load_nodes.resize(contacts.list.len(), [NO_NODE; 6]);
-        let update = |c: &mut Contact, loads: &mut [NodeLoad; 6], nodes: &mut [u32; 6]| {
+        self.energies.resize(contacts.list.len(), (0.0, 0.0));
+        let update = |c: &mut Contact,
+                      loads: &mut [NodeLoad; 6],
+                      nodes: &mut [u32; 6],
+                      energy: &mut (Real, Real)| {
             let (vs1, vs2, g) = geometry(model, &k, c);
             let f = update_frictional_contact(&c.params, &mut c.state, &law_kinematics(&g), dt);
             let l1 = distribute_force_as(
@@ -71,6 +75,7 @@ impl ContactPipeline {
             *nodes = load_nodes(c.site1.node_count(), c.site2.node_count(), loads);
             c.forces = f;
             c.point = g.point;
+            *energy = (c.forces.elastic_energy, c.state.dissipated_friction);
             (vs1, vs2, g)
         };
         if self.damped {
@@ -81,10 +86,11 @@ impl ContactPipeline {
                 .par_iter_mut()
                 .zip(self.loads.par_iter_mut())
                 .zip(self.load_nodes.par_iter_mut())
+                .zip(self.energies.par_iter_mut())
                 .zip(self.dashpot_loads.par_iter_mut())
                 .with_min_len(MIN_PARALLEL_COSTLY)
-                .for_each(|(((c, loads), nodes), dashpot)| {
-                    let (vs1, vs2, g) = update(c, loads, nodes);
+                .for_each(|((((c, loads), nodes), energy), dashpot)| {
+                    let (vs1, vs2, g) = update(c, loads, nodes, energy);
                     let f = c.forces.dashpot_force;
                     if f == Vec3::zeros() {
                         *dashpot = zero;
@@ -102,9 +108,10 @@ impl ContactPipeline {
                 .par_iter_mut()
                 .zip(self.loads.par_iter_mut())
                 .zip(self.load_nodes.par_iter_mut())
+                .zip(self.energies.par_iter_mut())
                 .with_min_len(MIN_PARALLEL_COSTLY)
-                .for_each(|((c, loads), nodes)| {
-                    update(c, loads, nodes);
+                .for_each(|(((c, loads), nodes), energy)| {
+                    update(c, loads, nodes, energy);
                 });
         }
         // in key order, the free spheres' contacts among the others

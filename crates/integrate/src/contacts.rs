@@ -48,6 +48,10 @@ pub(crate) struct ContactPipeline {
     /// Per contact, the particles its loads go to, slot by slot (`NO_NODE` for a slot not
     /// used): what the index of `gather.rs` reads, written where the loads are made.
     pub(crate) load_nodes: Vec<[u32; 6]>,
+    /// Per general contact, its elastic energy and the friction it dissipated, after the
+    /// last update, in list order (written where the law runs, for the energy balance:
+    /// [`Contacts::energy_sums_from`]).
+    pub(crate) energies: Vec<(Real, Real)>,
     /// Where each particle's loads are, for their parallel sum (`gather.rs`).
     pub(crate) load_index: LoadIndex,
     /// The free spheres' pairs split into parts for their parallel update (`pair_parts.rs`).

@@ -385,7 +385,14 @@ impl Simulation {
         e.kinetic_translation = work.kinetic_translation;
         e.kinetic_rotation = work.kinetic_rotation;
         e.elastic_links = links.elastic_energy;
-        (e.elastic_contacts, e.friction) = self.state.contacts.energy_sums();
+        let contacts = &self.state.contacts;
+        (e.elastic_contacts, e.friction) =
+            contacts.energy_sums_from(&self.pipeline.contacts.energies);
+        debug_assert!({
+            let (elastic, friction) = contacts.energy_sums();
+            elastic.to_bits() == e.elastic_contacts.to_bits()
+                && friction.to_bits() == e.friction.to_bits()
+        });
         e.links_dissipated += links.dissipated;
         e.gravity_work += self.state.energy.pending.gravity;
         e.load_work += self.state.energy.pending.load + load_work;
