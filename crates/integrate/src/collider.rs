@@ -31,6 +31,7 @@
 use crate::broad_phase::BroadPhase;
 use crate::parallel::any_zipped;
 use crate::prefilter::hull;
+use crate::step_work::VerletWatch;
 use flexdem_elements::touching::Element;
 use flexdem_elements::{Model, ParticleKind};
 use flexdem_geom::{aabb_sphere, aabb_swept_segment, aabb_swept_triangle, Real, Vec3};
@@ -171,6 +172,26 @@ impl Collider {
     /// Whether some particle or wall has moved by more than its limit since the last build
     /// (or there was none).
     pub fn needs_rebuild(&self, model: &Model) -> bool {
+        self.needs_rebuild_after(model, None)
+    }
+
+    /// Where each particle was at the last build and how far it may move from there, for the
+    /// leapfrog to watch the particles it moves (`step_work::VerletWatch`); none before a
+    /// build, or when the particles are not those of the last build.
+    pub(crate) fn verlet_watch(&self, particles: usize) -> Option<VerletWatch<'_>> {
+        let built = self.builds > 0 && self.reference.len() == particles;
+        built.then_some(VerletWatch { reference: &self.reference, limits: &self.limits })
+    }
+
+    /// [`Collider::needs_rebuild`], with `particles_beyond` whether a particle has moved
+    /// beyond its limit if that is known (the leapfrog watched the step's moves from the
+    /// reference of this build, and nothing moved the particles since): then the
+    /// particles are not looked at again.
+    pub(crate) fn needs_rebuild_after(
+        &self,
+        model: &Model,
+        particles_beyond: Option<bool>,
+    ) -> bool {
         let p = &model.particles;
         if self.reference.len() != p.len() || self.builds == 0 {
             return true;
@@ -183,11 +204,13 @@ impl Collider {
             .iter()
             .zip(&self.wall_reference)
             .any(|(w, r)| (w.point - r).norm_squared() > wall_limit)
-            || any_zipped(
-                p.pos.iter().zip(&self.reference).zip(limits),
-                p.pos.par_iter().zip(&self.reference).zip(limits),
-                |((x, x0), &limit)| (x - x0).norm_squared() > limit * limit,
-            )
+            || particles_beyond.unwrap_or_else(|| {
+                any_zipped(
+                    p.pos.iter().zip(&self.reference).zip(limits),
+                    p.pos.par_iter().zip(&self.reference).zip(limits),
+                    |((x, x0), &limit)| (x - x0).norm_squared() > limit * limit,
+                )
+            })
     }
 
     /// Mask of an element.
@@ -346,5 +369,52 @@ mod tests {
         }
         assert_eq!(c.connection_element(membrane_edges + 3), NONE, "no such connection");
         assert_eq!(c.elements.len(), 3 + model.pfacets.len());
+    }
+
+    /// A column of spheres falling apart under gravity (all moving, the lowest fastest).
+    fn falling_spheres() -> crate::Simulation {
+        let mut model = Model::new();
+        let mat = model.add_material(Material::new(1e7, 0.3, 1000.0, 0.5).unwrap()).unwrap();
+        for k in 0..40 {
+            model.add_sphere(Vec3::new(0.0, 0.0, 0.03 * k as Real), 0.01, mat).unwrap();
+        }
+        let gravity = Vec3::new(0.0, 0.0, -9.81);
+        crate::Simulation::new(model, crate::Settings { gravity, ..Default::default() }).unwrap()
+    }
+
+    /// The leapfrog's watch of the moves is the collider's own test: after every step it
+    /// says a particle passed its limit exactly when a scan of every particle does, and the
+    /// collider rebuilds when it says so.
+    #[test]
+    fn the_leapfrogs_watch_is_the_colliders_scan() {
+        let mut sim = falling_spheres();
+        let (mut passed, mut builds) = (0, sim.collider().builds);
+        for _ in 0..3000 {
+            sim.step().unwrap();
+            let (collider, model) = (&sim.pipeline.collider, &sim.state.model);
+            let scan = collider.needs_rebuild_after(model, None);
+            assert_eq!(sim.pipeline.moved_beyond, Some(scan));
+            passed += usize::from(scan);
+            let before = collider.builds;
+            sim.step().unwrap();
+            assert_eq!(sim.collider().builds, before + u64::from(scan));
+            builds = sim.collider().builds;
+        }
+        assert!(passed > 2 && builds > 3, "{passed} passes, {builds} builds");
+    }
+
+    /// A particle moved by hand is seen at the next step, whatever the leapfrog watched:
+    /// the collider rebuilds and the contact it makes is found.
+    #[test]
+    fn a_particle_moved_by_hand_is_seen_at_the_next_step() {
+        let mut sim = falling_spheres();
+        sim.run(2).unwrap();
+        assert_eq!(sim.pipeline.moved_beyond, Some(false));
+        let (builds, below) = (sim.collider().builds, sim.model().particles.pos[20]);
+        sim.set_position(30, below + Vec3::new(0.019, 0.0, 0.0)).unwrap();
+        assert_eq!(sim.pipeline.moved_beyond, None);
+        sim.step().unwrap();
+        assert_eq!(sim.collider().builds, builds + 1);
+        assert_eq!(sim.contact_count(), 1);
     }
 }

@@ -8,6 +8,7 @@ use crate::contacts::ContactPipeline;
 use crate::integrator::StepWork;
 use crate::servo::WallLoadsAtStep;
 use crate::state::State;
+use crate::step_work::ChunkCheck;
 use crate::timers::Timers;
 use flexdem_elements::{Adjacency, Particles};
 use flexdem_geom::{Real, Vec3};
@@ -38,8 +39,12 @@ pub(crate) struct Pipeline {
     pub(crate) walls: WallLoadsAtStep,
     /// The leapfrog's per-chunk energy sums (`leapfrog_step`'s buffer).
     pub(crate) step_work: Vec<StepWork>,
-    /// Per chunk of the leapfrog, whether its check flagged a particle (its buffer).
-    pub(crate) step_flags: Vec<bool>,
+    /// Per chunk of the leapfrog, its checks' answers (their buffer).
+    pub(crate) step_flags: Vec<ChunkCheck>,
+    /// Whether a particle has moved beyond its limit since the collider's last build, as the
+    /// leapfrog of the last step found; none when not known (before a step, or after a
+    /// particle was moved by hand): the collider then looks at every particle.
+    pub(crate) moved_beyond: Option<bool>,
     /// Per-stage wall-clock times.
     pub(crate) timers: Timers,
     /// The user's hook, if any.
@@ -61,6 +66,7 @@ impl Pipeline {
             walls: WallLoadsAtStep::zeros(state.model.walls.len()),
             step_work: Vec::new(),
             step_flags: Vec::new(),
+            moved_beyond: None,
             timers: Timers::default(),
             force_hook: None,
         }

@@ -221,11 +221,12 @@ impl Simulation {
     }
 
     /// Moves particle `i` to `position` by hand. The collider sees the move at the next step
-    /// (it watches every particle's displacement); links and contacts feel it as a
-    /// deformation.
+    /// (it watches every particle's displacement: the leapfrog's watch of the last step no
+    /// longer holds); links and contacts feel it as a deformation.
     pub fn set_position(&mut self, i: u32, position: Vec3) -> Result<(), SimulationError> {
         let i = self.particle(i, &position, "position")?;
         self.state.model.particles.pos[i] = position;
+        self.pipeline.moved_beyond = None;
         Ok(())
     }
 

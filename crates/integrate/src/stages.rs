@@ -125,7 +125,8 @@ impl Simulation {
 
     /// Collision: rebuilds the candidate pairs when a particle has moved beyond its margin.
     fn collision_stage(&mut self) {
-        if self.pipeline.collider.needs_rebuild(&self.state.model) {
+        let beyond = self.pipeline.moved_beyond.take();
+        if self.pipeline.collider.needs_rebuild_after(&self.state.model, beyond) {
             let collider = &mut self.pipeline.collider;
             collider.rebuild(&self.state.model);
             // the sphere pairs' array becomes the neighbour list's keys (one array, not two)
@@ -276,9 +277,12 @@ impl Simulation {
         let pipeline = &mut self.pipeline;
         // (the collision stage sized the reaches to the particles)
         debug_assert_eq!(pipeline.collider.reach.len(), self.state.model.particles.len());
-        let checks =
-            &mut Checks { reach: Some(&pipeline.collider.reach), flags: &mut pipeline.step_flags };
-        let (mut work, flagged) = leapfrog_step_checked(
+        // the leapfrog also watches the moves for the collider (its pass at the next step)
+        let verlet = pipeline.collider.verlet_watch(self.state.model.particles.len());
+        let watched = verlet.is_some();
+        let (reach, flags) = (Some(&pipeline.collider.reach[..]), &mut pipeline.step_flags);
+        let checks = &mut Checks { reach, verlet, flags };
+        let (mut work, found) = leapfrog_step_checked(
             &mut self.state.model.particles,
             &pipeline.force,
             &pipeline.torque,
@@ -286,6 +290,7 @@ impl Simulation {
             &mut pipeline.step_work,
             checks,
         );
+        pipeline.moved_beyond = watched.then_some(found.beyond);
         work.boundary += 0.5 * walls.before * previous;
         work.boundary_next += 0.5 * walls.after * dt;
         // the dashpots' forces at t over the two halves of the kick (model.md §7): the second
@@ -298,7 +303,7 @@ impl Simulation {
             wall.point += wall.velocity * dt;
         }
         self.pipeline.timers.lap(Stage::Integration);
-        (work, flagged)
+        (work, found.flagged)
     }
 
     /// Power of the moving walls at time t: `Σ F·v_wall` over wall contacts, `F` the force

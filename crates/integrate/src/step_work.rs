@@ -55,11 +55,43 @@ impl std::ops::AddAssign for StepWork {
     }
 }
 
-/// What the leapfrog checks after moving a chunk: the particles' reaches (none: no check)
-/// and the chunks' answers (a buffer kept by the caller).
+/// What the leapfrog checks after moving a chunk: the particles' reaches (none: no check),
+/// the collider's watch of their moves since its last build (none: no check) and the
+/// chunks' answers (a buffer kept by the caller).
 pub(crate) struct Checks<'a> {
     pub(crate) reach: Option<&'a [Real]>,
-    pub(crate) flags: &'a mut Vec<bool>,
+    pub(crate) verlet: Option<VerletWatch<'a>>,
+    pub(crate) flags: &'a mut Vec<ChunkCheck>,
+}
+
+/// Where each particle was at the collider's last build and how far it may move from there
+/// before the next (`Collider::verlet_watch`), one entry per particle.
+#[derive(Clone, Copy)]
+pub(crate) struct VerletWatch<'a> {
+    pub(crate) reference: &'a [Vec3],
+    pub(crate) limits: &'a [Real],
+}
+
+impl VerletWatch<'_> {
+    /// Whether one of the particles from `first` on, at `pos`, is farther than its limit
+    /// from its reference: `|x − x₀|² > limit²`, the collider's own test
+    /// (`Collider::needs_rebuild`).
+    #[inline]
+    pub(crate) fn any_beyond(&self, first: usize, pos: &[Vec3]) -> bool {
+        let at = first..first + pos.len();
+        let (reference, limits) = (&self.reference[at.clone()], &self.limits[at]);
+        let moved = pos.iter().zip(reference).zip(limits);
+        moved.fold(false, |any, ((x, x0), &limit)| any | ((x - x0).norm_squared() > limit * limit))
+    }
+}
+
+/// A chunk's answers to the leapfrog's checks.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) struct ChunkCheck {
+    /// A particle may have gone wrong ([`flags_step`]).
+    pub(crate) flagged: bool,
+    /// A particle moved beyond its limit since the collider's last build.
+    pub(crate) beyond: bool,
 }
 
 /// Whether a particle may have gone wrong in the step (`x`, `v`, `w` its new position,
