@@ -19,7 +19,7 @@ use crate::pair_passes::PairScratch;
 use crate::parallel::MAX_CHUNKS_PER_TASK;
 use crate::parallel::{MIN_PARALLEL_CHEAP, MIN_PARALLEL_COSTLY};
 use crate::prefilter::{proven_apart, write_hull, Hull};
-use crate::touchings::Touchings;
+use crate::touchings::{match_sorted, Touchings};
 use flexdem_contact::{ContactDamping, LinkKinematicsMode};
 use flexdem_elements::pairs::{self, Candidate, ConnectionRef, PFacetRef, SphereRef};
 use flexdem_elements::touching::{dominates, Element, ElementCandidate, Topology};
@@ -75,10 +75,16 @@ struct Scratch {
     found: Vec<Vec<ElementCandidate>>,
     /// Where each chunk's touchings start in pair order, then their end ([`Touchings`]).
     starts: Vec<u32>,
+    /// Per chunk, its touchings' candidate pairs (collidable indices), in pair order.
+    found_pairs: Vec<Vec<(u32, u32)>>,
+    /// Every touching's candidate pair, in pair order (sorted: the one-contact rule's
+    /// lookups).
     keys: Vec<(u32, u32)>,
     /// Per chunk, per touching, whether it survived the one-contact rule (its oriented
     /// `Touching` is made from the touching where it is read: 1 byte here instead of a copy).
     survived: Vec<Vec<bool>>,
+    /// Per chunk, the sort keys of its touchings that survived (see `order`).
+    chunk_order: Vec<Vec<(Feature, Feature, u32)>>,
     /// The walls' touchings (they come after the touchings in the key order's indices).
     walls: Vec<Touching>,
     previous: Vec<Contact>,
@@ -87,6 +93,14 @@ struct Scratch {
     taken: Vec<bool>,
     ended: Vec<usize>,
     by_owners: Vec<usize>,
+}
+
+/// Makes `per_chunk` hold at least `chunks` lists (the new ones empty; those past `chunks`
+/// are kept for their memory).
+fn at_least<T>(per_chunk: &mut Vec<Vec<T>>, chunks: usize) {
+    if per_chunk.len() < chunks {
+        per_chunk.resize_with(chunks, Vec::new);
+    }
 }
 
 /// A touching turned so that body 1 is the one with the smaller (owner, feature): the
@@ -256,21 +270,24 @@ impl ContactPipeline {
                     }
                 });
         }
-        let hulls = &self.scratch.hulls;
         // per fixed chunk of candidate pairs, in parallel: the slab test, then the exact
         // kernel of the survivors, the touching ones kept in pair order (one pass, no
         // serial filtering of every pair's flag in between)
         let chunks = collider.pairs.len().div_ceil(DETECT_CHUNK);
-        if self.scratch.found.len() < chunks {
-            self.scratch.found.resize_with(chunks, Vec::new);
-        }
+        let scratch = &mut self.scratch;
+        let hulls = &scratch.hulls;
+        at_least(&mut scratch.found, chunks);
+        at_least(&mut scratch.found_pairs, chunks);
+        at_least(&mut scratch.chunk_order, chunks);
         collider
             .pairs
             .par_chunks(DETECT_CHUNK)
-            .zip(self.scratch.found[..chunks].par_iter_mut())
+            .zip(scratch.found[..chunks].par_iter_mut())
+            .zip(scratch.found_pairs[..chunks].par_iter_mut())
             .with_max_len(MAX_CHUNKS_PER_TASK)
-            .for_each(|(pairs, found)| {
+            .for_each(|((pairs, found), found_pairs)| {
                 found.clear();
+                found_pairs.clear();
                 for &(i, j) in pairs {
                     if proven_apart(&hulls[i as usize], &hulls[j as usize]) {
                         continue;
@@ -279,6 +296,7 @@ impl ContactPipeline {
                     let c = candidate(model, a, b);
                     if c.overlap() > 0.0 {
                         found.push(ElementCandidate { element1: a, element2: b, candidate: c });
+                        found_pairs.push((i, j));
                     }
                 }
             });
@@ -301,9 +319,16 @@ impl ContactPipeline {
                 Element::PFacet(k) => collider.pfacet_element[k as usize],
             }
         };
+        // each touching's key is its candidate pair (its elements' collidable indices), kept
+        // by the search: looked up from the elements, one touching after another, the keys
+        // took 150 µs a step of the membrane of 10⁵ PFacets on one thread
         let keys = &mut scratch.keys;
         keys.clear();
-        keys.extend(touching.iter().map(|c| (index_of(c.element1), index_of(c.element2))));
+        scratch.found_pairs[..chunks].iter().for_each(|p| keys.extend_from_slice(p));
+        debug_assert!(touching
+            .iter()
+            .zip(keys.iter())
+            .all(|(c, &key)| (index_of(c.element1), index_of(c.element2)) == key));
         let keys = &*keys;
         let survives = |i: usize, ci: &ElementCandidate| {
             let side2 = containing(collider, adj, ci.candidate.site2.feature);
@@ -319,47 +344,43 @@ impl ContactPipeline {
             }
             true
         };
-        if scratch.survived.len() < chunks {
-            scratch.survived.resize_with(chunks, Vec::new);
-        }
-        // per chunk, in parallel (each touching's index from its chunk's start)
+        at_least(&mut scratch.survived, chunks);
+        // sorted by key through a small (key, code) list: the touchings themselves are large
+        // and moving them in the sort cost more than the sort's comparisons. Code
+        // c·DETECT_CHUNK + l is touching l of chunk c (if it survived; increasing in pair
+        // order), W + m wall touching m, W = chunks·DETECT_CHUNK: as if both were in one list
+        // (the dominated ones left out and no copy)
+        let key = |t: &Touching, n: u32| (t.candidate.site1.feature, t.candidate.site2.feature, n);
+        // per chunk, in parallel (each touching's index from its chunk's start): whether each
+        // touching survives, and the sort keys of those that do (made one chunk after
+        // another, they took 290 µs a step of the membrane of 10⁵ PFacets)
         touching
             .chunks
             .par_iter()
             .zip(touching.starts.par_iter())
             .zip(scratch.survived[..chunks].par_iter_mut())
+            .zip(scratch.chunk_order[..chunks].par_iter_mut())
+            .enumerate()
             .with_max_len(MAX_CHUNKS_PER_TASK)
-            .for_each(|((found, &start), survived)| {
+            .for_each(|(c, (((found, &start), survived), order))| {
                 survived.clear();
                 survived.extend(
                     found.iter().enumerate().map(|(l, ci)| survives(start as usize + l, ci)),
                 );
+                order.clear();
+                let code = |l: usize| (c * DETECT_CHUNK + l) as u32;
+                let kept = found.iter().zip(survived.iter()).enumerate().filter(|(_, (_, &s))| s);
+                order.extend(kept.map(|(l, (t, _))| key(&surviving(model, t), code(l))));
             });
 
         // walls touch every particle on their side (one contact per wall and particle)
         let walls = &mut scratch.walls;
         walls.clear();
         walls.extend(collider.wall_pairs.iter().filter_map(|&(w, i)| wall_touching(model, w, i)));
-        // sorted by key through a small (key, code) list: the touchings themselves are large
-        // and moving them in the sort cost more than the sort's comparisons. Code
-        // c·DETECT_CHUNK + l is touching l of chunk c (if it survived; increasing in pair
-        // order), W + m wall touching m, W = chunks·DETECT_CHUNK: as if both were in one list
-        // (the dominated ones left out and no copy)
         let first_wall = (chunks * DETECT_CHUNK) as u32;
         let order = &mut scratch.order;
         order.clear();
-        let key = |t: &Touching, n: u32| (t.candidate.site1.feature, t.candidate.site2.feature, n);
-        for (c, (found, survived)) in touching.chunks.iter().zip(&scratch.survived).enumerate() {
-            let code = |l: usize| (c * DETECT_CHUNK + l) as u32;
-            order.extend(
-                found
-                    .iter()
-                    .zip(survived)
-                    .enumerate()
-                    .filter(|(_, (_, &survived))| survived)
-                    .map(|(l, (t, _))| key(&surviving(model, t), code(l))),
-            );
-        }
+        scratch.chunk_order[..chunks].iter().for_each(|o| order.extend_from_slice(o));
         order.extend(walls.iter().enumerate().map(|(m, t)| key(t, first_wall + m as u32)));
         order.par_sort_unstable();
 
@@ -369,15 +390,8 @@ impl ContactPipeline {
         // ones taken and the fresh ones noted in order
         std::mem::swap(&mut contacts.list, &mut scratch.previous);
         let old = &scratch.previous;
-        let matched = &mut scratch.matched;
-        matched.clear();
-        let mut k = 0;
-        for &(f1, f2, _) in order.iter() {
-            while k < old.len() && old[k].key() < (f1, f2) {
-                k += 1;
-            }
-            matched.push((k < old.len() && old[k].key() == (f1, f2)).then_some(k as u32));
-        }
+        let new_key = |&(f1, f2, _): &(Feature, Feature, u32)| (f1, f2);
+        match_sorted(order, old, new_key, Contact::key, &mut scratch.matched);
         let walls = &scratch.walls;
         let touching_at = |n: u32| match n.checked_sub(first_wall) {
             Some(m) => walls[m as usize],
