@@ -99,7 +99,7 @@ impl NodeShare {
 }
 
 /// The stiffness sums of the particles from `first` on, as many as the slices hold: the part
-/// of [`StiffnessSums`] one task of `stiffness_sums::add_fresh` adds to.
+/// of [`StiffnessSums`] one task of `stiffness_sums::add_fresh` or `add_in_ranges` adds to.
 pub(crate) struct SumsRange<'a> {
     /// The first particle's index.
     pub(crate) first: usize,
