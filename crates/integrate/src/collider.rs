@@ -31,7 +31,7 @@
 use crate::broad_phase::BroadPhase;
 use crate::parallel::any_zipped;
 use crate::prefilter::hull;
-use crate::step_work::VerletWatch;
+use crate::step_work::{beyond_limit, VerletWatch};
 use flexdem_elements::touching::Element;
 use flexdem_elements::{Model, ParticleKind};
 use flexdem_geom::{aabb_sphere, aabb_swept_segment, aabb_swept_triangle, Real, Vec3};
@@ -208,7 +208,7 @@ impl Collider {
                 any_zipped(
                     p.pos.iter().zip(&self.reference).zip(limits),
                     p.pos.par_iter().zip(&self.reference).zip(limits),
-                    |((x, x0), &limit)| (x - x0).norm_squared() > limit * limit,
+                    |((x, x0), &limit)| beyond_limit(x, x0, limit),
                 )
             })
     }

@@ -79,14 +79,16 @@ impl NodeShare {
     /// for a node out of `k`'s range.
     #[inline]
     pub(crate) fn add_to(&self, k: &mut SumsRange<'_>) -> Option<Real> {
-        let n = (self.node as usize).checked_sub(k.first)?;
-        let (t, r) = (k.translational.get_mut(n)?, &mut k.rotational[n]);
-        *t += self.increments.0;
-        *r += self.increments.1;
+        let node = self.node as usize;
+        if !k.holds(node) {
+            return None;
+        }
+        k.add(node, self.increments);
         if !self.free {
             return Some(Real::INFINITY);
         }
-        let (kt, kr) = (t.max(), r.max());
+        let n = node - k.first;
+        let (kt, kr) = (k.translational[n].max(), k.rotational[n].max());
         let mut ratio = Real::INFINITY;
         if kt > 0.0 {
             ratio = ratio.min(self.mass / kt);

@@ -74,15 +74,21 @@ pub(crate) struct VerletWatch<'a> {
 
 impl VerletWatch<'_> {
     /// Whether one of the particles from `first` on, at `pos`, is farther than its limit
-    /// from its reference: `|x − x₀|² > limit²`, the collider's own test
-    /// (`Collider::needs_rebuild`).
+    /// from its reference ([`beyond_limit`], the collider's own test).
     #[inline]
     pub(crate) fn any_beyond(&self, first: usize, pos: &[Vec3]) -> bool {
         let at = first..first + pos.len();
         let (reference, limits) = (&self.reference[at.clone()], &self.limits[at]);
         let moved = pos.iter().zip(reference).zip(limits);
-        moved.fold(false, |any, ((x, x0), &limit)| any | ((x - x0).norm_squared() > limit * limit))
+        moved.fold(false, |any, ((x, x0), &limit)| any | beyond_limit(x, x0, limit))
     }
+}
+
+/// Whether a particle at `x` is farther than `limit` from where it was at the collider's last
+/// build, `x0`: `|x − x₀|² > limit²` (a NaN position is not: `flags_step` catches it).
+#[inline]
+pub(crate) fn beyond_limit(x: &Vec3, x0: &Vec3, limit: Real) -> bool {
+    (x - x0).norm_squared() > limit * limit
 }
 
 /// A chunk's answers to the leapfrog's checks.
