@@ -1,0 +1,51 @@
+#!/usr/bin/env bash
+# How much faster two threads step a scene than one, measured as a series of paired runs: each
+# round one `flexdem bench ... --threads 1,2` (the two runs seconds apart, so a disturbance of
+# the host falls on both or on neither, more than between runs minutes apart), preceded by the
+# host's memory bandwidth from one and from two threads (`bench/membw.c`, built here) to show
+# how loaded the host was. Prints every round, then the median and the range of the rounds'
+# ratios, the ratio of the minima, and how many rounds reached TARGET (default 1.8).
+#
+#   bench/scaling.sh BIN ROUNDS BENCH_ARGS...
+#   bench/scaling.sh target/release/flexdem 10 --scene packing --sizes 100000 --steps 137
+#
+# Give --steps: every run then ends in the same state, and the script checks it (one checksum).
+set -euo pipefail
+[ $# -ge 3 ] || { sed -n '2,11p' "$0" >&2; exit 2; }
+bin=$1 rounds=$2
+shift 2
+[ -x "$bin" ] || { echo "not an executable: $bin" >&2; exit 2; }
+target=${TARGET:-1.8}
+out=$(mktemp -d)
+trap 'rm -rf "$out"' EXIT
+here=$(cd "$(dirname "$0")" && pwd)
+cc -O2 -pthread "$here/membw.c" -o "$out/membw"
+printf '%5s %12s %12s %10s %10s %7s\n' round 'membw_1 GB/s' 'membw_2 GB/s' ms_1thr ms_2thr ratio
+for r in $(seq 1 "$rounds"); do
+    bw1=$("$out/membw" 256 1 | awk '{ print $(NF - 4) }')
+    bw2=$("$out/membw" 256 2 | awk '{ print $(NF - 4) }')
+    "$bin" bench "$@" --threads 1,2 --csv "$out/r$r.csv" >"$out/r$r.log" 2>&1 ||
+        { cat "$out/r$r.log" >&2; echo "round $r failed" >&2; exit 1; }
+    # threads, ms/step, checksum
+    awk -F, 'NR > 1 { print $7, $14, $32 }' "$out/r$r.csv" >"$out/r$r.txt"
+    t1=$(awk '$1 == 1 { print $2 }' "$out/r$r.txt")
+    t2=$(awk '$1 == 2 { print $2 }' "$out/r$r.txt")
+    awk '{ print $3 }' "$out/r$r.txt" >>"$out/sums.txt"
+    ratio=$(awk -v a="$t1" -v b="$t2" 'BEGIN { printf "%.3f", a / b }')
+    echo "$t1 $t2 $ratio" >>"$out/all.txt"
+    printf '%5d %12s %12s %10.3f %10.3f %7s\n' "$r" "$bw1" "$bw2" "$t1" "$t2" "$ratio"
+done
+sort -g -k3,3 "$out/all.txt" | awk -v t="$target" '
+    { r[NR] = $3; if ($3 >= t) hit++ }
+    END {
+        printf "ratio over %d rounds: median %.3f, range %.3f-%.3f; %d of %d rounds >= %s\n",
+            NR, r[int((NR + 1) / 2)], r[1], r[NR], hit, NR, t
+    }'
+awk 'NR == 1 || $1 < m1 { m1 = $1 } NR == 1 || $2 < m2 { m2 = $2 }
+    END { printf "minima: 1 thread %.3f ms, 2 threads %.3f ms, ratio %.3f\n", m1, m2, m1 / m2 }' \
+    "$out/all.txt"
+if [ "$(sort -u "$out/sums.txt" | wc -l)" -ne 1 ]; then
+    echo "the runs ended in different states (checksums differ)" >&2
+    exit 1
+fi
+echo "every run ended in the same state (checksum $(head -1 "$out/sums.txt"))"
