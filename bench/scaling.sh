@@ -3,8 +3,12 @@
 # round one `flexdem bench ... --threads 1,2` (the two runs seconds apart, so a disturbance of
 # the host falls on both or on neither, more than between runs minutes apart), preceded by the
 # host's memory bandwidth from one and from two threads (`bench/membw.c`, built here) to show
-# how loaded the host was. Prints every round, then the median and the range of the rounds'
-# ratios, the ratio of the minima, and how many rounds reached TARGET (default 1.8).
+# how loaded the host was. Prints every round (its ratio of the mean steps, and of the median
+# steps), then the median and the range of the rounds' ratios, the ratio of the minima, how
+# many rounds reached TARGET (default 1.8), and the ratio of the fastest steps: the runs at
+# both thread counts take the same steps (the same state at every step), so each step's
+# fastest time over the rounds is its time on an undisturbed host, and their sum, rebuilds
+# and time-step estimates included, that of an undisturbed run.
 #
 #   bench/scaling.sh BIN ROUNDS BENCH_ARGS...
 #   bench/scaling.sh target/release/flexdem 10 --scene packing --sizes 100000 --steps 137
@@ -20,20 +24,27 @@ out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 here=$(cd "$(dirname "$0")" && pwd)
 cc -O2 -pthread "$here/membw.c" -o "$out/membw"
-printf '%5s %12s %12s %10s %10s %7s\n' round 'membw_1 GB/s' 'membw_2 GB/s' ms_1thr ms_2thr ratio
+printf '%5s %12s %12s %10s %10s %7s %9s\n' round 'membw_1 GB/s' 'membw_2 GB/s' ms_1thr ms_2thr ratio med_ratio
 for r in $(seq 1 "$rounds"); do
     bw1=$("$out/membw" 256 1 | awk '{ print $(NF - 4) }')
     bw2=$("$out/membw" 256 2 | awk '{ print $(NF - 4) }')
-    "$bin" bench "$@" --threads 1,2 --csv "$out/r$r.csv" >"$out/r$r.log" 2>&1 ||
+    "$bin" bench "$@" --threads 1,2 --csv "$out/r$r.csv" --step-times "$out/s$r.csv" \
+        >"$out/r$r.log" 2>&1 ||
         { cat "$out/r$r.log" >&2; echo "round $r failed" >&2; exit 1; }
-    # threads, ms/step, checksum
-    awk -F, 'NR > 1 { print $7, $14, $32 }' "$out/r$r.csv" >"$out/r$r.txt"
+    # threads, ms/step, checksum, median step
+    awk -F, 'NR > 1 { print $7, $14, $32, $35 }' "$out/r$r.csv" >"$out/r$r.txt"
+    # threads, step, ms
+    awk -F, 'NR > 1 { print $3, $4, $5 }' "$out/s$r.csv" >>"$out/steps.txt"
     t1=$(awk '$1 == 1 { print $2 }' "$out/r$r.txt")
     t2=$(awk '$1 == 2 { print $2 }' "$out/r$r.txt")
     awk '{ print $3 }' "$out/r$r.txt" >>"$out/sums.txt"
     ratio=$(awk -v a="$t1" -v b="$t2" 'BEGIN { printf "%.3f", a / b }')
+    m1=$(awk '$1 == 1 { print $4 }' "$out/r$r.txt")
+    m2=$(awk '$1 == 2 { print $4 }' "$out/r$r.txt")
+    med_ratio=$(awk -v a="$m1" -v b="$m2" 'BEGIN { printf "%.3f", a / b }')
     echo "$t1 $t2 $ratio" >>"$out/all.txt"
-    printf '%5d %12s %12s %10.3f %10.3f %7s\n' "$r" "$bw1" "$bw2" "$t1" "$t2" "$ratio"
+    printf '%5d %12s %12s %10.3f %10.3f %7s %9s\n' "$r" "$bw1" "$bw2" "$t1" "$t2" "$ratio" \
+        "$med_ratio"
 done
 sort -g -k3,3 "$out/all.txt" | awk -v t="$target" '
     { r[NR] = $3; if ($3 >= t) hit++ }
@@ -44,6 +55,13 @@ sort -g -k3,3 "$out/all.txt" | awk -v t="$target" '
 awk 'NR == 1 || $1 < m1 { m1 = $1 } NR == 1 || $2 < m2 { m2 = $2 }
     END { printf "minima: 1 thread %.3f ms, 2 threads %.3f ms, ratio %.3f\n", m1, m2, m1 / m2 }' \
     "$out/all.txt"
+awk '{ k = $1 " " $2; if (!(k in m) || $3 < m[k]) m[k] = $3 }
+    END {
+        for (k in m) { split(k, f, " "); s[f[1]] += m[k]; n[f[1]]++ }
+        printf "fastest steps (every step at its fastest over the rounds, summed): 1 thread %.3f ms, ", \
+            s[1] / n[1]
+        printf "2 threads %.3f ms per step, ratio %.3f\n", s[2] / n[2], s[1] / s[2]
+    }' "$out/steps.txt"
 if [ "$(sort -u "$out/sums.txt" | wc -l)" -ne 1 ]; then
     echo "the runs ended in different states (checksums differ)" >&2
     exit 1

@@ -90,7 +90,7 @@ warmup_steps,steps,dt_s,build_s,wall_s,cpu_s,ms_per_step,ns_per_element_step,ste
 steps_per_cpu_s,\
 collision_ms_per_step,contacts_ms_per_step,links_ms_per_step,integration_ms_per_step,\
 collision_pct,contacts_pct,links_pct,integration_pct,other_pct,contacts,rss_delta_bytes,\
-bytes_per_element,probe,probe_value,checksum,vs_first_threads,heap_delta_bytes";
+bytes_per_element,probe,probe_value,checksum,vs_first_threads,heap_delta_bytes,median_step_ms";
 
 /// One CSV line for `row` (no newline): the columns of [`CSV_HEADER`]; an unknown memory
 /// or a missing probe is an empty field, the checksum is hexadecimal.
@@ -127,6 +127,7 @@ pub fn csv_row(row: &PlanRow) -> String {
     fields.push(format!("{:016x}", r.checksum));
     fields.push(verdict(row.same_as_first).to_string());
     fields.push(r.heap_bytes.map_or(String::new(), |b| b.to_string()));
+    fields.push(format!("{:.6}", r.median_step_ms()));
     fields.join(",")
 }
 
@@ -137,6 +138,25 @@ pub fn csv(rows: &[PlanRow]) -> String {
     for row in rows {
         out.push_str(&csv_row(row));
         out.push('\n');
+    }
+    out
+}
+
+/// The header of the steps' CSV ([`step_times_csv`]).
+pub const STEP_TIMES_HEADER: &str = "scene,size,threads,step,ms";
+
+/// Every timed step of `rows` (`BenchResult::step_walls`), one line each: the row's scene,
+/// size and threads, the step's number in its run (from 0) and its wall time (ms).
+pub fn step_times_csv(rows: &[PlanRow]) -> String {
+    let mut out = String::from(STEP_TIMES_HEADER);
+    out.push('\n');
+    for row in rows {
+        let r = &row.result;
+        let (name, size) = (r.case.name(), r.case.size());
+        for (k, wall) in r.step_walls.iter().enumerate() {
+            let ms = wall.as_secs_f64() * 1e3;
+            out.push_str(&format!("{name},{size},{},{k},{ms:.6}\n", r.threads));
+        }
     }
     out
 }

@@ -7,7 +7,7 @@ use crate::procfs::{cpu_time, resident_memory};
 use crate::{BenchError, Case, SceneKind};
 use flexdem_elements::Model;
 use flexdem_geom::Real;
-use flexdem_integrate::Timers;
+use flexdem_integrate::{Simulation, SimulationError, Timers};
 use std::time::{Duration, Instant};
 
 /// How many steps are timed.
@@ -65,6 +65,12 @@ pub struct BenchResult {
     pub build_time: Duration,
     /// Wall time of the timed steps.
     pub wall: Duration,
+    /// Wall time of each timed step, in order. The runs of one case at different thread
+    /// counts take the same steps (the same state at every step), so step k of one run is
+    /// step k of the other: a step slowed by the host in one run can be told from the
+    /// others, and the fastest time of each step over several runs summed
+    /// (`bench/scaling.sh`).
+    pub step_walls: Vec<Duration>,
     /// CPU time of the process (all threads, user + system) during the timed steps (None
     /// where /proc is missing).
     pub cpu: Option<Duration>,
@@ -96,6 +102,16 @@ impl BenchResult {
     /// Wall time per step (ms).
     pub fn ms_per_step(&self) -> Real {
         per_step_ms(self.wall, self.steps)
+    }
+
+    /// The median of the steps' wall times (ms; the lower middle for an even count): the
+    /// typical step, whatever a few disturbed steps took. It leaves out the rarer, dearer
+    /// steps too (a rebuild of the candidate pairs, a time-step estimate), so it is below
+    /// [`BenchResult::ms_per_step`] even on an idle host.
+    pub fn median_step_ms(&self) -> Real {
+        let mut walls = self.step_walls.clone();
+        walls.sort_unstable();
+        walls.get(walls.len().saturating_sub(1) / 2).map_or(0.0, |&d| per_step_ms(d, 1))
     }
 
     /// Wall time per step and element (ns).
@@ -189,8 +205,9 @@ pub fn run_case(
     let steps = steps.steps(warmup_per_step).max(1);
     let before = *sim.timers();
     let cpu_before = cpu_time();
+    let mut step_walls = Vec::with_capacity(steps.min(MAX_STEP_WALLS as u64) as usize);
     let start = Instant::now();
-    pool.install(|| sim.run(steps)).map_err(failed)?;
+    pool.install(|| timed_steps(&mut sim, steps, &mut step_walls)).map_err(failed)?;
     let wall = start.elapsed();
     let cpu = match (cpu_before, cpu_time()) {
         (Some(a), Some(b)) => Some(b.saturating_sub(a)),
@@ -208,6 +225,7 @@ pub fn run_case(
         dt: sim.dt(),
         build_time,
         wall,
+        step_walls,
         cpu,
         stages: after.since(&before),
         contacts: sim.contact_count(),
@@ -216,6 +234,27 @@ pub fn run_case(
         probe: case.probe(&sim),
         checksum: state_checksum(sim.model(), sim.contact_count()),
     })
+}
+
+/// The most steps whose wall times a run keeps ([`BenchResult::step_walls`], 16 MB); the
+/// steps past them are timed in the run's whole wall time only.
+pub const MAX_STEP_WALLS: usize = 1 << 20;
+
+/// Runs `steps` steps of `sim`, pushing each one's wall time onto `walls` (the first
+/// [`MAX_STEP_WALLS`]).
+fn timed_steps(
+    sim: &mut Simulation,
+    steps: u64,
+    walls: &mut Vec<Duration>,
+) -> Result<(), SimulationError> {
+    for _ in 0..steps {
+        let start = Instant::now();
+        sim.step()?;
+        if walls.len() < MAX_STEP_WALLS {
+            walls.push(start.elapsed());
+        }
+    }
+    Ok(())
 }
 
 /// FNV-1a (64 bits) of the bits of every particle's position, velocity, orientation and

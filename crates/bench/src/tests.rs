@@ -1,6 +1,6 @@
 //! Scenes build at small sizes and run; results do not depend on the thread count.
 
-use crate::report::{csv, table_header, table_row, CSV_HEADER};
+use crate::report::{csv, step_times_csv, table_header, table_row, CSV_HEADER, STEP_TIMES_HEADER};
 use crate::scenes::{membrane_cells, TUBE_IMPACT_DT};
 use crate::*;
 use flexdem_elements::Dofs;
@@ -151,7 +151,21 @@ fn plan_reuses_the_first_step_count_and_compares_checksums() {
     let text = csv(&rows);
     assert_eq!(text.lines().count(), 3);
     assert!(text.lines().all(|l| l.split(',').count() == header_cols), "{text}");
-    assert!(text.lines().nth(2).unwrap().ends_with(",identical,"), "{text}");
+    assert!(text.lines().nth(2).unwrap().contains(",identical,"), "{text}");
+    // every timed step's wall time kept, in a run's whole wall time; the median one of them
+    for r in rows.iter().map(|row| &row.result) {
+        assert_eq!(r.step_walls.len() as u64, r.steps);
+        assert!(r.step_walls.iter().sum::<Duration>() <= r.wall);
+        let mut walls: Vec<f64> = r.step_walls.iter().map(|d| d.as_secs_f64() * 1e3).collect();
+        walls.sort_by(f64::total_cmp);
+        assert_eq!(r.median_step_ms(), walls[(walls.len() - 1) / 2]);
+    }
+    let steps = step_times_csv(&rows);
+    let lines: Vec<&str> = steps.lines().collect();
+    assert_eq!(lines[0], STEP_TIMES_HEADER);
+    assert_eq!(lines.len() as u64, 1 + rows.iter().map(|r| r.result.steps).sum::<u64>());
+    assert!(lines[1].starts_with("packing,200,1,0,"), "{steps}");
+    assert!(lines.iter().all(|l| l.split(',').count() == 5), "{steps}");
     let header = table_header();
     let width = header.lines().next().unwrap().chars().count();
     assert!(rows.iter().all(|r| table_row(r).chars().count() == width));

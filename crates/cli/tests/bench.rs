@@ -104,3 +104,33 @@ fn bench_writes_its_csv_under_target_by_default() {
     let both = flexdem(&["bench", "--update-committed", "--csv", "x.csv"]);
     assert_eq!(both.status.code(), Some(2), "--csv and --update-committed conflict");
 }
+
+/// `--step-times` writes every timed step of every run, after the main CSV; a path it cannot
+/// write is an error naming it, and the main CSV is written all the same.
+#[test]
+fn bench_writes_each_steps_time_when_asked() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = |steps_csv: &str| {
+        Command::new(env!("CARGO_BIN_EXE_flexdem"))
+            .args(["bench", "--quick", "--scene", "packing", "--threads", "1,2"])
+            .args(["--csv", "main.csv", "--step-times", steps_csv])
+            .current_dir(dir.path())
+            .output()
+            .unwrap()
+    };
+    let out = run("steps/times.csv");
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let times = std::fs::read_to_string(dir.path().join("steps/times.csv")).unwrap();
+    let lines: Vec<&str> = times.lines().collect();
+    // --quick: 5 timed steps, at 1 and at 2 threads
+    assert_eq!(lines.len(), 1 + 2 * 5, "{times}");
+    assert_eq!(lines[0], "scene,size,threads,step,ms");
+    assert!(lines[1].starts_with("packing,200,1,0,") && lines[10].starts_with("packing,200,2,4,"));
+    std::fs::remove_file(dir.path().join("main.csv")).unwrap();
+    // a folder where the file should be
+    std::fs::create_dir(dir.path().join("taken")).unwrap();
+    let out = run("taken");
+    assert!(!out.status.success());
+    assert!(text(&out.stderr).contains("cannot write taken"), "{}", text(&out.stderr));
+    assert!(dir.path().join("main.csv").is_file());
+}

@@ -4,7 +4,7 @@
 
 use crate::error::{CliError, Outcome};
 use clap::Args;
-use flexdem_bench::report::{csv, table_header, table_row};
+use flexdem_bench::report::{csv, step_times_csv, table_header, table_row};
 use flexdem_bench::{run_plan, Case, Plan, SceneKind};
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
@@ -64,6 +64,11 @@ pub struct BenchArgs {
     /// current folder.
     #[arg(long, value_name = "FILE", conflicts_with = "update_committed")]
     pub csv: Option<PathBuf>,
+    /// Also write every timed step's wall time to this CSV (scene, size, threads, step, ms; its
+    /// folder is created): the runs of a case at each thread count take the same steps, so
+    /// a step the host slowed in one run can be told from the others (`bench/scaling.sh`).
+    #[arg(long, value_name = "FILE.csv")]
+    pub step_times: Option<PathBuf>,
     /// Write the CSV over the committed results of the source tree
     /// (bench/results/latest.csv), to update them.
     #[arg(long)]
@@ -112,6 +117,11 @@ pub fn bench(args: &BenchArgs) -> Result<Outcome, CliError> {
     } else {
         write_csv(&csv_path, &text)?;
         print(&format!("CSV: {}", csv_path.display()));
+    }
+    // (after the main CSV: a failure here loses neither it nor the table)
+    if let Some(path) = &args.step_times {
+        write_csv(path, &step_times_csv(&rows))?;
+        print(&format!("steps' times: {}", path.display()));
     }
     if rows.iter().any(|r| r.same_as_first == Some(false)) {
         return Err(CliError::Run(
