@@ -13,6 +13,18 @@
 //! than m_a (every particle's limit is the smallest margin of the elements holding it), and a
 //! hull's points are convex combinations of its nodes, so the pair cannot have closed the gap.
 //!
+//! The boxes pair elements that a slab between their hulls keeps apart (a triangle beside the
+//! next but one of a flat mesh: their boxes overlap where the triangles do not). So each
+//! build tests every pair other than two free spheres with the prefilter's separating slabs
+//! (`prefilter::proven_apart`), on the hulls grown by the margins, r_a + m_a and r_b + m_b,
+//! and drops those it proves apart. Until the next build no node of element a moves by more
+//! than m_a, so a's hull stays within m_a of its hull at the build, and a slab wider than
+//! r_a + m_a + r_b + m_b at the build leaves one wider than r_a + r_b at every step to the
+//! next. The pairs kept are in the same order and hold every pair that touches before the
+//! next build, so the touchings, the contacts and every result are those of the whole list.
+//! On the membrane of 10⁵ PFacets under spheres the test drops 71 % of the pairs (473 541 →
+//! 137 090), which the contact stage tested at every step.
+//!
 //! Memory: the margins and cell entries (at most 64 per element, 8 at most for a typical
 //! box) are linear in the elements (the boxes are made from the nodes when the broad phase
 //! asks, once per cell a box is in, and not kept); the candidate pairs are as many as the
@@ -29,8 +41,8 @@
 //! swept element is at a node).
 
 use crate::broad_phase::BroadPhase;
-use crate::parallel::any_zipped;
-use crate::prefilter::hull;
+use crate::parallel::{any_zipped, MIN_PARALLEL_CHEAP};
+use crate::prefilter::{hull, proven_apart, write_hull, Hull};
 use crate::step_work::{beyond_limit, VerletWatch};
 use flexdem_elements::touching::Element;
 use flexdem_elements::{Model, ParticleKind};
@@ -241,9 +253,45 @@ impl Collider {
     }
 
     /// Rebuilds the boxes and candidate pairs: boxes of the skeletons grown by the radius and
-    /// by the element's margin; pairs whose masks share a bit, that share no node and that are
-    /// not two parts of a structure whose self-contact is off.
+    /// by the element's margin; pairs whose masks share a bit, that share no node, that are
+    /// not two parts of a structure whose self-contact is off, and whose hulls grown by their
+    /// margins no slab separates (see the module documentation).
     pub fn rebuild(&mut self, model: &Model) {
+        self.rebuild_with(model, &mut Vec::new());
+    }
+
+    /// [`Collider::rebuild`], with `hulls` a buffer for the elements' grown hulls (the
+    /// contact stage's, which it writes anew at each step).
+    pub(crate) fn rebuild_with(&mut self, model: &Model, hulls: &mut Vec<Hull>) {
+        self.pair_boxes(model);
+        self.mark_paired();
+        self.drop_pairs_apart_until_next_build(model, hulls);
+        self.mark_paired();
+        let p = &model.particles;
+        self.wall_pairs.clear();
+        self.sphere_wall_pairs.clear();
+        for (w, wall) in model.walls.iter().enumerate() {
+            for i in 0..p.len() {
+                let gap = (p.pos[i] - wall.point).dot(&wall.normal) - p.radius[i];
+                if gap <= 2.0 * self.limits[i] && (wall.mask & p.mask[i]) != 0 {
+                    if self.sphere_element[i] == NONE {
+                        self.wall_pairs.push((w as u32, i as u32));
+                    } else {
+                        self.sphere_wall_pairs.push((w as u32, i as u32));
+                    }
+                }
+            }
+        }
+        self.reference.clear();
+        self.reference.extend_from_slice(&p.pos);
+        self.wall_reference.clear();
+        self.wall_reference.extend(model.walls.iter().map(|w| w.point));
+        self.builds += 1;
+    }
+
+    /// The pairs of overlapping boxes (grown by the margins) that the pairing rules accept:
+    /// two free spheres in `sphere_pairs` (by particle id), the others in `pairs`.
+    fn pair_boxes(&mut self, model: &Model) {
         let p = &model.particles;
         let (elements, margins) = (&self.elements, &self.margins);
         let accept = |i: u32, j: u32| {
@@ -292,32 +340,36 @@ impl Collider {
         let (sphere_pairs, pairs) = (&mut self.sphere_pairs, &mut self.pairs);
         self.broad.overlapping_pairs_split(count, box_of, accept, two_spheres, sphere_pairs, pairs);
         self.name_sphere_pairs();
+    }
 
-        self.wall_pairs.clear();
-        self.sphere_wall_pairs.clear();
-        for (w, wall) in model.walls.iter().enumerate() {
-            for i in 0..p.len() {
-                let gap = (p.pos[i] - wall.point).dot(&wall.normal) - p.radius[i];
-                if gap <= 2.0 * self.limits[i] && (wall.mask & p.mask[i]) != 0 {
-                    if self.sphere_element[i] == NONE {
-                        self.wall_pairs.push((w as u32, i as u32));
-                    } else {
-                        self.sphere_wall_pairs.push((w as u32, i as u32));
-                    }
-                }
-            }
+    /// Drops from `pairs` those whose elements' hulls, grown by their margins, are proven
+    /// apart (see the module documentation: they cannot touch before the next build); the
+    /// others stay in order. The hulls, of the elements `paired` marks, are written in
+    /// `hulls`.
+    fn drop_pairs_apart_until_next_build(&mut self, model: &Model, hulls: &mut Vec<Hull>) {
+        if self.pairs.is_empty() {
+            return;
         }
-        self.reference.clear();
-        self.reference.extend_from_slice(&p.pos);
-        self.wall_reference.clear();
-        self.wall_reference.extend(model.walls.iter().map(|w| w.point));
-        self.builds += 1;
+        let unused = Hull::new([Vec3::zeros(); 3], 1, 0.0);
+        hulls.resize(self.elements.len(), unused);
+        let (elements, margins, paired) = (&self.elements, &self.margins, &self.paired);
+        hulls.par_iter_mut().enumerate().with_min_len(MIN_PARALLEL_CHEAP).for_each(|(i, h)| {
+            // (an element in no pair keeps a stale hull: none reads it)
+            if paired[i] {
+                write_hull(model, elements[i], h);
+                h.radius += margins[i];
+            }
+        });
+        let hulls = &*hulls;
+        let apart = |&(i, j): &(u32, u32)| proven_apart(&hulls[i as usize], &hulls[j as usize]);
+        let kept = self.pairs.par_iter().with_min_len(MIN_PARALLEL_CHEAP).filter(|p| !apart(p));
+        self.pairs = kept.copied().collect();
     }
 
     /// Names the pairs of two free spheres (`sphere_pairs`, from the broad phase as element
     /// indices) by their particle ids (the broad phase kept those whose centres are within
     /// the sum of their radii and margins). Free spheres come first among the elements, in
-    /// particle order, so the list stays sorted. Marks the elements of the other pairs.
+    /// particle order, so the list stays sorted.
     fn name_sphere_pairs(&mut self) {
         let elements = &self.elements;
         for pair in &mut self.sphere_pairs {
@@ -328,6 +380,11 @@ impl Collider {
             };
             *pair = (i, j);
         }
+    }
+
+    /// Marks the elements of `pairs` in `paired`.
+    fn mark_paired(&mut self) {
+        let elements = &self.elements;
         self.paired.clear();
         self.paired.resize(elements.len(), false);
         for &(a, b) in &self.pairs {
@@ -369,6 +426,65 @@ mod tests {
         }
         assert_eq!(c.connection_element(membrane_edges + 3), NONE, "no such connection");
         assert_eq!(c.elements.len(), 3 + model.pfacets.len());
+    }
+
+    /// A membrane of thick nodes with a cable along it and spheres on it, touching, near or
+    /// apart (positions from `seed`).
+    fn membrane_under_spheres(seed: u64) -> (Model, impl FnMut() -> Real) {
+        let mut state = seed | 1;
+        // xorshift64*, uniform in [0, 1)
+        let mut uniform = move || {
+            state ^= state >> 12;
+            state ^= state << 25;
+            state ^= state >> 27;
+            (state.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as Real / (1u64 << 53) as Real
+        };
+        let mut model = Model::new();
+        let mat = model.add_material(Material::new(1e7, 0.3, 1000.0, 0.5).unwrap()).unwrap();
+        let opts = StructureOptions::new("m", 0.02, mat);
+        let (x, y) = (Vec3::x(), Vec3::y());
+        membrane_rectangle(&mut model, Vec3::zeros(), x, y, 1.0, 1.0, 8, 8, &opts).unwrap();
+        let line =
+            straight_line(Vec3::new(0.05, 0.5, 0.045), Vec3::new(0.95, 0.55, 0.05), 9).unwrap();
+        chain(&mut model, &line, &StructureOptions::new("cable", 0.02, mat)).unwrap();
+        for _ in 0..20 {
+            let (u, v, gap) = (uniform(), uniform(), 0.04 * uniform() - 0.005);
+            model.add_sphere(Vec3::new(u, v, 0.07 + gap), 0.05, mat).unwrap();
+        }
+        (model, uniform)
+    }
+
+    /// The pairs a build drops (their hulls grown by the margins proven apart) cannot touch
+    /// before the next build: with every particle then moved by up to its limit (each in
+    /// a direction of its own), each pair of overlapping boxes that touches (the exact
+    /// kernel) is among the pairs kept, which are the others in the same order.
+    #[test]
+    fn a_pair_dropped_at_a_build_cannot_touch_before_the_next() {
+        let (mut dropped, mut touching) = (0, 0);
+        for seed in 0..24 {
+            let (mut model, mut uniform) = membrane_under_spheres(seed);
+            let mut c = Collider::new(&model, 0.5);
+            c.pair_boxes(&model);
+            let boxes = c.pairs.clone();
+            c.rebuild(&model);
+            let kept = c.pairs.clone();
+            let mut rest = boxes.iter();
+            assert!(kept.iter().all(|k| rest.any(|b| b == k)), "kept in order, from the boxes'");
+            dropped += boxes.len() - kept.len();
+            for (x, &limit) in model.particles.pos.iter_mut().zip(&c.limits) {
+                let d = Vec3::new(uniform(), uniform(), uniform()).add_scalar(-0.5);
+                *x += d.normalize() * (limit * uniform().sqrt());
+            }
+            assert!(!c.needs_rebuild(&model));
+            for &(i, j) in &boxes {
+                let (a, b) = (c.elements[i as usize], c.elements[j as usize]);
+                if crate::contacts::candidate(&model, a, b).overlap() > 0.0 {
+                    touching += 1;
+                    assert!(kept.binary_search(&(i, j)).is_ok(), "seed {seed}: {a:?} {b:?}");
+                }
+            }
+        }
+        assert!(dropped > 1000 && touching > 100, "{dropped} dropped, {touching} touching");
     }
 
     /// A column of spheres falling apart under gravity (all moving, the lowest fastest).

@@ -137,7 +137,7 @@ fn surviving(model: &Model, ci: &ElementCandidate) -> Touching {
 
 /// The closest features of two collidable elements (`a` before `b` in collidable order:
 /// spheres, then connections, then PFacets).
-fn candidate(model: &Model, a: Element, b: Element) -> Candidate {
+pub(crate) fn candidate(model: &Model, a: Element, b: Element) -> Candidate {
     let p = &model.particles;
     let sphere =
         |i: u32| SphereRef { id: i, center: p.pos[i as usize], radius: p.radius[i as usize] };
@@ -228,6 +228,12 @@ impl ContactPipeline {
                 || contacts.pairs.touching().any(|(_, c)| c.params.is_damped()),
             ..Default::default()
         }
+    }
+
+    /// The buffer of the elements' hulls, which [`ContactPipeline::detect`] writes anew at
+    /// each step, lent to the collider's build between the steps.
+    pub(crate) fn hull_buffer(&mut self) -> &mut Vec<Hull> {
+        &mut self.scratch.hulls
     }
 
     /// Finds this step's touchings among the collider's candidate pairs, applies the

@@ -128,7 +128,7 @@ impl Simulation {
         let beyond = self.pipeline.moved_beyond.take();
         if self.pipeline.collider.needs_rebuild_after(&self.state.model, beyond) {
             let collider = &mut self.pipeline.collider;
-            collider.rebuild(&self.state.model);
+            collider.rebuild_with(&self.state.model, self.pipeline.contacts.hull_buffer());
             // the sphere pairs' array becomes the neighbour list's keys (one array, not two)
             let spheres = std::mem::take(&mut collider.sphere_pairs);
             self.state.contacts.pairs.rebuild(spheres, &collider.sphere_wall_pairs);
