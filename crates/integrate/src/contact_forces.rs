@@ -158,10 +158,19 @@ impl ContactPipeline {
             // keeping the others' (`pair_parts.rs`, `part_step.rs`); those of the particles
             // general contacts load summed per particle (`gather.rs`)
             let (index, parts) = (&mut self.load_index, &mut self.pair_parts);
-            index.index_pairs(&contacts.pairs, p.len());
             index.index_general(&self.load_nodes, p.len());
             let count = PARTS_PER_THREAD * rayon::current_num_threads();
+            // the pairs' table is read by a new split and by the gather of the general
+            // contacts' particles: made for a split with none, it is freed (and made again,
+            // once per neighbour list at most, if general contacts come)
+            let stale = !parts.is_split_for(&contacts.pairs, p.len(), count);
+            if stale || index.has_general() {
+                index.index_pairs(&contacts.pairs, p.len());
+            }
             parts.split(&contacts.pairs, p.len(), count, |i| index.pair_entries(i));
+            if stale && !index.has_general() {
+                index.release_pairs();
+            }
             parts.with_general(index.has_general(), |i| !index.general_entries(i).is_empty());
             let scratch = &mut self.pairs;
             let report =

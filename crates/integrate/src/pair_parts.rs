@@ -101,10 +101,10 @@ impl PairParts {
         parts: usize,
         entries: impl Fn(usize) -> &'a [u32],
     ) {
-        let built_for = Some((pairs.generation(), particles, parts));
-        if self.built_for == built_for {
+        if self.is_split_for(pairs, particles, parts) {
             return;
         }
+        let built_for = Some((pairs.generation(), particles, parts));
         let keys = pairs.keys();
         let chunks = keys.len().div_ceil(PAIR_CHUNK);
         let parts = parts.clamp(1, chunks.max(1));
@@ -144,6 +144,17 @@ impl PairParts {
             }
         }));
         self.built_for = built_for;
+    }
+
+    /// Whether the split is that of `pairs` into `parts` parts for `particles` particles
+    /// ([`PairParts::split`] would keep it).
+    pub(crate) fn is_split_for(
+        &self,
+        pairs: &NeighbourList,
+        particles: usize,
+        parts: usize,
+    ) -> bool {
+        self.built_for == Some((pairs.generation(), particles, parts))
     }
 
     /// Marks for this step the particles that general contacts load (`loaded(i)`) as
