@@ -7,8 +7,11 @@
 //!
 //! min_j (b_j · u) − max_i (a_i · u) > (r_a + r_b)·|u|,
 //!
-//! (a separating slab wider than the two radii). The tests below are conservative: they only
-//! ever answer "apart" when the exact distance exceeds r_a + r_b.
+//! (a separating slab wider than the two radii). A sphere beside a PFacet, at contact height
+//! over its plane (resting on a membrane next to the cells it touches), has no such slab; its
+//! centre's distance to the triangle, beyond r_a + r_b by a slack far above the round-off,
+//! separates them. The tests are conservative: they only ever answer "apart" when the exact
+//! distance exceeds r_a + r_b.
 //!
 //! A hull is written for every collidable element at every step, so it holds only its
 //! points, centroid, radius and count (112 bytes; 136 with the unit normal): a PFacet's face
@@ -161,11 +164,75 @@ pub fn proven_apart(a: &Hull, b: &Hull) -> bool {
             }
         }
     }
-    // two PFacets only: a sphere or a connection beside a PFacet is separated by the centroid
-    // axis already, and the test would be paid by every sphere resting on a membrane
-    a.count == 3
-        && b.count == 3
-        && (apart_beyond_an_edge(pa, &na, pb, reach) || apart_beyond_an_edge(pb, &nb, pa, reach))
+    match (a.count, b.count) {
+        (3, 3) => {
+            apart_beyond_an_edge(pa, &na, pb, reach) || apart_beyond_an_edge(pb, &nb, pa, reach)
+        }
+        // a sphere resting on a membrane is at contact distance from the plane of each
+        // PFacet around those it touches, and no slab of the tests above separates it from
+        // them (18 400 such pairs a step of the membrane of 10⁵ PFacets reached the exact
+        // kernel and did not touch): its centre's distance to the triangle does
+        (1, 3) => point_beyond_triangle(&pa[0], pb, reach),
+        (3, 1) => point_beyond_triangle(&pb[0], pa, reach),
+        // a connection beside a PFacet is separated by the centroid axis already
+        _ => false,
+    }
+}
+
+/// The least height of a triangle, over its longest edge, for [`point_beyond_triangle`] to
+/// answer (below it the closest point's weights lose their accuracy: the exact kernel
+/// decides).
+const WELL_SHAPED: Real = 1e-4;
+
+/// The slack [`point_beyond_triangle`] asks beyond `reach`, relative to the sizes at play (the
+/// reach, the longest edge, the coordinates): far above the round-off of the distance here and
+/// in the exact kernel (`flexdem_geom::project_point_triangle`), about 10⁻⁸ of the edge on a
+/// triangle of [`WELL_SHAPED`] height, so that it never calls apart a pair the kernel finds
+/// touching; far below the gaps of near misses (the sphere beside a PFacet it does not touch:
+/// millimetres).
+const POINT_SLACK: Real = 1e-6;
+
+/// Whether the point `p` is farther than `reach` from the triangle `t`: the distance to its
+/// closest point (Ericson, Real-Time Collision Detection §5.1.5: the vertex, edge or face
+/// region of `p`, from six dot products, in his order), above `reach + s` with the slack
+/// s = 10⁻⁶ (reach + l_max) + 10⁻¹² |x|_∞ ([`POINT_SLACK`]). No answer (false) for a triangle
+/// whose height is below 10⁻⁴ of its longest edge ([`WELL_SHAPED`]), or for a NaN.
+#[inline]
+fn point_beyond_triangle(p: &Vec3, t: &[Vec3; 3], reach: Real) -> bool {
+    let [a, b, c] = t;
+    let (ab, ac, bc) = (b - a, c - a, c - b);
+    let l2 = ab.norm_squared().max(ac.norm_squared()).max(bc.norm_squared());
+    let n2 = ab.cross(&ac).norm_squared();
+    // (n² > (ε·l²)² says height / l_max > ε, up to a factor 2; false for a NaN)
+    if !(n2 > (WELL_SHAPED * l2) * (WELL_SHAPED * l2)) {
+        return false;
+    }
+    let ap = p - a;
+    let (d1, d2) = (ab.dot(&ap), ac.dot(&ap));
+    let bp = p - b;
+    let (d3, d4) = (ab.dot(&bp), ac.dot(&bp));
+    let cp = p - c;
+    let (d5, d6) = (ab.dot(&cp), ac.dot(&cp));
+    let (vc, vb, va) = (d1 * d4 - d3 * d2, d5 * d2 - d1 * d6, d3 * d6 - d5 * d4);
+    let closest = if d1 <= 0.0 && d2 <= 0.0 {
+        *a
+    } else if d3 >= 0.0 && d4 <= d3 {
+        *b
+    } else if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
+        a + ab * (d1 / (d1 - d3))
+    } else if d6 >= 0.0 && d5 <= d6 {
+        *c
+    } else if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
+        a + ac * (d2 / (d2 - d6))
+    } else if va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0 {
+        b + bc * ((d4 - d3) / ((d4 - d3) + (d5 - d6)))
+    } else {
+        let denom = 1.0 / (va + vb + vc);
+        a + ab * (vb * denom) + ac * (vc * denom)
+    };
+    let far = p.amax().max(a.amax()).max(b.amax()).max(c.amax());
+    let beyond = reach + POINT_SLACK * (reach + l2.sqrt()) + 1e-12 * far;
+    (p - closest).norm_squared() > beyond * beyond
 }
 
 /// Whether PFacet `other` lies beyond one of PFacet `h`'s edges (`h` its corners, `n` its
@@ -258,6 +325,47 @@ mod tests {
         assert!(proven_apart(&a, &b));
     }
 
+    /// A sphere beside a PFacet it does not touch, at contact height over the PFacet's plane
+    /// (a sphere resting on a flat membrane, 5 mm beyond the cell under it): no slab of the
+    /// centroid axis or the face normal separates them, the centre's distance to the triangle
+    /// (0.4 mm beyond the reach) does. A sphere over the cell, touching it, is not apart.
+    #[test]
+    fn a_sphere_resting_beside_a_pfacet_is_apart() {
+        let (h, r_node, r_sphere) = (0.0125, 0.002, 0.03);
+        let cell =
+            tri([Vec3::new(0.0, 0.0, 0.0), Vec3::new(h, 0.0, 0.0), Vec3::new(h, h, 0.0)], r_node);
+        let beside = Hull::new([Vec3::new(h + 0.005, 0.5 * h, r_node + r_sphere); 3], 1, r_sphere);
+        let axis = cell.centroid - beside.centroid;
+        assert!(!separated_along(&beside, &cell, &axis), "the centroid axis separates them");
+        assert!(!separated_along(&cell, &beside, &Vec3::z()), "the face normal separates them");
+        assert!(proven_apart(&beside, &cell) && proven_apart(&cell, &beside));
+        // (1 µm into it: at exactly the reach, the slabs' round-off decides)
+        let into = r_node + r_sphere - 1e-6;
+        let over = Hull::new([Vec3::new(0.7 * h, 0.3 * h, into); 3], 1, r_sphere);
+        assert!(!proven_apart(&over, &cell) && !proven_apart(&cell, &over));
+    }
+
+    /// A point's distance to a triangle of any shape, with `reach` from 0.99 to 1.01 of it
+    /// (the kernel's `project_point_triangle`): never apart within the reach; apart beyond it
+    /// by more than the slack when the triangle is well shaped.
+    fn check_point_triangle(p: Vec3, t: [Vec3; 3], scale: Real) -> Result<(), TestCaseError> {
+        let exact = flexdem_geom::project_point_triangle(&p, &t[0], &t[1], &t[2]);
+        let distance = (exact.point - p).norm();
+        for f in [0.99, 0.999_999, 1.0, 1.000_001, 1.01] {
+            let reach = distance * f;
+            let apart = point_beyond_triangle(&p, &t, reach);
+            prop_assert!(!(apart && distance <= reach), "{p:?} {t:?} {reach}");
+        }
+        // effective: well shaped, 1 % beyond the reach (10⁴ times the slack), apart
+        let (ab, ac) = (t[1] - t[0], t[2] - t[0]);
+        let l2 = ab.norm_squared().max(ac.norm_squared()).max((t[2] - t[1]).norm_squared());
+        let shaped = ab.cross(&ac).norm_squared() > 1e-4 * l2 * l2;
+        if shaped && distance > 1e-3 * scale {
+            prop_assert!(point_beyond_triangle(&p, &t, distance / 1.01));
+        }
+        Ok(())
+    }
+
     fn vec3() -> impl Strategy<Value = Vec3> {
         (-1.0..1.0f64, -1.0..1.0f64, -1.0..1.0f64).prop_map(|(x, y, z)| Vec3::new(x, y, z))
     }
@@ -290,6 +398,36 @@ mod tests {
             let distance = (cp.point_1 - cp.point_0).norm();
             if distance <= ra + rb {
                 prop_assert!(!proven_apart(&tri(a, ra), &tri(b, rb)));
+            }
+        }
+
+        /// The point–triangle test never calls apart a point within its reach of the
+        /// triangle (the kernel's distance), for triangles of any shape, thin ones too, at
+        /// any scale and far from the origin, and the point in any of the seven regions.
+        #[test]
+        fn a_point_within_its_reach_of_a_triangle_is_never_apart(
+            t in [vec3(), vec3(), vec3()],
+            thin in 0usize..3,
+            p in vec3(),
+            k in -12i32..6,
+            offset in vec3(),
+        ) {
+            let scale = (10.0 as Real).powi(k);
+            // thin: the third corner pulled towards the first edge's line
+            let mut t = t;
+            if thin > 0 {
+                let squash = (10.0 as Real).powi(-4 * thin as i32);
+                t[2] = t[0] + (t[1] - t[0]) * 0.3 + (t[2] - t[0]) * squash;
+            }
+            let offset = offset * 1e3 * scale;
+            let t = t.map(|x| x * scale + offset);
+            check_point_triangle(p * scale + offset, t, scale)?;
+            // the point over the triangle's face and over its first edge, near the plane
+            let (face, edge) = (t[0] * 0.2 + t[1] * 0.3 + t[2] * 0.5, (t[0] + t[1]) * 0.5);
+            let n = (t[1] - t[0]).cross(&(t[2] - t[0]));
+            let up = if n.norm() > 0.0 { n / n.norm() } else { Vec3::z() };
+            for (base, h) in [(face, 1e-3), (edge, 1e-3), (face, 0.0), (t[2], 0.5)] {
+                check_point_triangle(base + up * (h * scale), t, scale)?;
             }
         }
 
