@@ -22,8 +22,9 @@
 //! r_a + m_a + r_b + m_b at the build leaves one wider than r_a + r_b at every step to the
 //! next. The pairs kept are in the same order and hold every pair that touches before the
 //! next build, so the touchings, the contacts and every result are those of the whole list.
-//! On the membrane of 10⁵ PFacets under spheres the test drops 71 % of the pairs (473 541 →
-//! 137 090), which the contact stage tested at every step.
+//! On the membrane of 10⁵ PFacets under spheres the test drops 76 % of the pairs (473 541 →
+//! 112 448; 137 090 without the prefilter's distance of a sphere to a PFacet), which the
+//! contact stage tested at every step; on the tube impact, 1 600 → 36 at each build.
 //!
 //! Memory: the margins and cell entries (at most 64 per element, 8 at most for a typical
 //! box) are linear in the elements (the boxes are made from the nodes when the broad phase
