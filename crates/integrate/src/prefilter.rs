@@ -20,7 +20,7 @@
 
 use flexdem_elements::touching::Element;
 use flexdem_elements::Model;
-use flexdem_geom::{Real, Vec3};
+use flexdem_geom::{closest_point_triangle, Real, Vec3};
 
 /// An element in its current configuration (112 bytes): its skeleton points and radius.
 #[derive(Clone, Copy, Debug)]
@@ -193,8 +193,8 @@ const WELL_SHAPED: Real = 1e-4;
 const POINT_SLACK: Real = 1e-6;
 
 /// Whether the point `p` is farther than `reach` from the triangle `t`: the distance to its
-/// closest point (Ericson, Real-Time Collision Detection §5.1.5: the vertex, edge or face
-/// region of `p`, from six dot products, in his order), above `reach + s` with the slack
+/// closest point (`flexdem_geom::closest_point_triangle`, Ericson's six dot products, a
+/// third of the kernel's projection), above `reach + s` with the slack
 /// s = 10⁻⁶ (reach + l_max) + 10⁻¹² |x|_∞ ([`POINT_SLACK`]). No answer (false) for a triangle
 /// whose height is below 10⁻⁴ of its longest edge ([`WELL_SHAPED`]), or for a NaN.
 #[inline]
@@ -207,29 +207,7 @@ fn point_beyond_triangle(p: &Vec3, t: &[Vec3; 3], reach: Real) -> bool {
     if !(n2 > (WELL_SHAPED * l2) * (WELL_SHAPED * l2)) {
         return false;
     }
-    let ap = p - a;
-    let (d1, d2) = (ab.dot(&ap), ac.dot(&ap));
-    let bp = p - b;
-    let (d3, d4) = (ab.dot(&bp), ac.dot(&bp));
-    let cp = p - c;
-    let (d5, d6) = (ab.dot(&cp), ac.dot(&cp));
-    let (vc, vb, va) = (d1 * d4 - d3 * d2, d5 * d2 - d1 * d6, d3 * d6 - d5 * d4);
-    let closest = if d1 <= 0.0 && d2 <= 0.0 {
-        *a
-    } else if d3 >= 0.0 && d4 <= d3 {
-        *b
-    } else if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
-        a + ab * (d1 / (d1 - d3))
-    } else if d6 >= 0.0 && d5 <= d6 {
-        *c
-    } else if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
-        a + ac * (d2 / (d2 - d6))
-    } else if va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0 {
-        b + bc * ((d4 - d3) / ((d4 - d3) + (d5 - d6)))
-    } else {
-        let denom = 1.0 / (va + vb + vc);
-        a + ab * (vb * denom) + ac * (vc * denom)
-    };
+    let closest = closest_point_triangle(p, a, b, c);
     let far = p.amax().max(a.amax()).max(b.amax()).max(c.amax());
     let beyond = reach + POINT_SLACK * (reach + l2.sqrt()) + 1e-12 * far;
     (p - closest).norm_squared() > beyond * beyond

@@ -101,6 +101,16 @@ impl BenchArgs {
 pub fn bench(args: &BenchArgs) -> Result<Outcome, CliError> {
     let plan = plan(args)?;
     let csv_path = args.csv_path();
+    if let Some(path) = &args.step_times {
+        // (checked before the runs: minutes of timing are not lost to a path)
+        if path.as_os_str() == "-" {
+            return Err(CliError::Input("--step-times: a file, not `-`".into()));
+        }
+        if *path == csv_path {
+            let shown = path.display();
+            return Err(CliError::Input(format!("--step-times: {shown} is the CSV's file")));
+        }
+    }
     let to_stdout = csv_path.as_os_str() == "-";
     let mut out: Box<dyn std::io::Write> =
         if to_stdout { Box::new(std::io::stderr()) } else { Box::new(std::io::stdout()) };
