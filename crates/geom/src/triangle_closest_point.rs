@@ -3,7 +3,9 @@
 //! products, no square root and no frame. It gives the point alone, for a distance bound
 //! (the contact prefilter's sphere beside a PFacet); [`project_point_triangle`] gives the
 //! kernel's projection with its weights and feature, robust on thin triangles, and costs
-//! about three times as much (a frame with a square root, then up to three edge projections).
+//! more than twice as much (a frame with a square root, then up to three edge projections:
+//! 44 ns a call against 19 for the prefilter's whole test, by perf on the membrane of 10⁵
+//! PFacets).
 //!
 //! [`project_point_triangle`]: crate::project_point_triangle
 
