@@ -193,8 +193,8 @@ const WELL_SHAPED: Real = 1e-4;
 const POINT_SLACK: Real = 1e-6;
 
 /// Whether the point `p` is farther than `reach` from the triangle `t`: the distance to its
-/// closest point (`flexdem_geom::closest_point_triangle`, Ericson's six dot products, a
-/// third of the kernel's projection), above `reach + s` with the slack
+/// closest point (`flexdem_geom::closest_point_triangle`, Ericson's six dot products, less
+/// than half the kernel's projection's cost), above `reach + s` with the slack
 /// s = 10⁻⁶ (reach + l_max) + 10⁻¹² |x|_∞ ([`POINT_SLACK`]). No answer (false) for a triangle
 /// whose height is below 10⁻⁴ of its longest edge ([`WELL_SHAPED`]), or for a NaN.
 #[inline]
