@@ -135,11 +135,16 @@ fn bench_writes_each_steps_time_when_asked() {
     assert!(dir.path().join("main.csv").is_file());
 }
 
-/// `--step-times` on standard output or on the CSV's own file is refused at once, naming it.
+/// `--step-times` on standard output or on the CSV's own file (however it is written) is
+/// refused at once, naming it.
 #[test]
 fn bench_refuses_step_times_over_its_csv() {
     for (args, message) in [
         (&["--csv", "x.csv", "--step-times", "x.csv"][..], "--step-times: x.csv is the CSV's file"),
+        (
+            &["--csv", "x.csv", "--step-times", "./x.csv"][..],
+            "--step-times: ./x.csv is the CSV's file",
+        ),
         (&["--step-times", "-"][..], "--step-times: a file, not `-`"),
     ] {
         let out = flexdem(&[&["bench", "--quick", "--scene", "packing"][..], args].concat());

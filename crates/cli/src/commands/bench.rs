@@ -106,7 +106,7 @@ pub fn bench(args: &BenchArgs) -> Result<Outcome, CliError> {
         if path.as_os_str() == "-" {
             return Err(CliError::Input("--step-times: a file, not `-`".into()));
         }
-        if *path == csv_path {
+        if same_file(path, &csv_path) {
             let shown = path.display();
             return Err(CliError::Input(format!("--step-times: {shown} is the CSV's file")));
         }
@@ -139,6 +139,45 @@ pub fn bench(args: &BenchArgs) -> Result<Outcome, CliError> {
         ));
     }
     Ok(Outcome::Done)
+}
+
+/// Whether paths `a` and `b` name the same file, whether they exist or not: each made
+/// absolute, its `.` and `..` taken out, its longest existing ancestor resolved (symbolic
+/// links), so that `./x.csv`, `x.csv`, `out/../x.csv` and the same file through a linked folder
+/// match.
+fn same_file(a: &Path, b: &Path) -> bool {
+    resolved(a) == resolved(b)
+}
+
+/// [`same_file`]'s form of `path`.
+fn resolved(path: &Path) -> PathBuf {
+    use std::path::Component;
+    let absolute = std::path::absolute(path).unwrap_or_else(|_| path.to_path_buf());
+    let mut lexical = PathBuf::new();
+    for c in absolute.components() {
+        match c {
+            Component::CurDir => {}
+            Component::ParentDir => {
+                lexical.pop();
+            }
+            c => lexical.push(c),
+        }
+    }
+    // the longest ancestor that exists, resolved, then the rest
+    let mut rest = Vec::new();
+    let mut existing = lexical.as_path();
+    loop {
+        if let Ok(real) = existing.canonicalize() {
+            return rest.iter().rev().fold(real, |p, name| p.join(name));
+        }
+        match (existing.parent(), existing.file_name()) {
+            (Some(parent), Some(name)) => {
+                rest.push(name.to_os_string());
+                existing = parent;
+            }
+            _ => return lexical,
+        }
+    }
 }
 
 /// The plan of `args`: scenes, sizes, threads, steps.
@@ -218,4 +257,32 @@ fn write_csv(path: &Path, text: &str) -> Result<(), CliError> {
         std::fs::create_dir_all(dir).map_err(fail)?;
     }
     std::fs::write(path, text).map_err(fail)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn same_file_sees_through_dots_and_linked_folders() {
+        let dir = tempfile::tempdir().unwrap();
+        let d = dir.path();
+        std::fs::create_dir(d.join("out")).unwrap();
+        let x = d.join("out/x.csv");
+        #[cfg(unix)]
+        {
+            std::os::unix::fs::symlink(d.join("out"), d.join("link")).unwrap();
+            assert!(same_file(&x, &d.join("link/x.csv")));
+        }
+        for same in ["out/./x.csv", "out/../out/x.csv", "new/../out/x.csv"] {
+            assert!(same_file(&x, &d.join(same)), "{same}");
+        }
+        for other in ["out/y.csv", "x.csv", "out/x.csv/..", "new/x.csv"] {
+            assert!(!same_file(&x, &d.join(other)), "{other}");
+        }
+        // not yet there, below folders not yet there
+        assert!(same_file(&d.join("a/b/c.csv"), &d.join("a/./b/../b/c.csv")));
+        // relative to the current folder
+        assert!(same_file(Path::new("x.csv"), Path::new("./x.csv")));
+    }
 }
