@@ -174,7 +174,7 @@ impl SceneKind {
 /// radius 0.1 m and node radius 2 mm, E = 1 MPa, both end rings clamped; a solid sphere of
 /// radius 0.1 m, E = 100 MPa, at 2 m/s; no gravity, no damping), with the automatic time
 /// step replaced by [`TUBE_IMPACT_DT`] so that every run takes the same steps. flexdem's own
-/// speed scene, not a YADE twin (see [`TUBE_IMPACT_TOML`]).
+/// speed scene, not a YADE twin (that is `bench/scenes/tube_impact_solid_yade.toml`).
 pub fn tube_impact() -> Result<(Model, Settings), BenchError> {
     let scene =
         flexdem_scene::parse_scene(TUBE_IMPACT_TOML, Path::new("examples/tube_impact_heavy.toml"))?;
