@@ -142,8 +142,9 @@ pub fn bench(args: &BenchArgs) -> Result<Outcome, CliError> {
 }
 
 /// Whether paths `a` and `b` name the same file, whether they exist or not: each made
-/// absolute, its `.` and `..` taken out, its longest existing ancestor resolved (symbolic
-/// links), so that `./x.csv`, `x.csv`, `out/../x.csv` and the same file through a linked folder
+/// absolute, its longest existing ancestor resolved (symbolic links, `.` and `..` as the
+/// system reads them), then the rest of it with `.` dropped and `..` taken as the folder
+/// above; so `./x.csv`, `x.csv`, `out/../x.csv` and the same file through a linked folder
 /// match.
 fn same_file(a: &Path, b: &Path) -> bool {
     resolved(a) == resolved(b)
@@ -153,31 +154,25 @@ fn same_file(a: &Path, b: &Path) -> bool {
 fn resolved(path: &Path) -> PathBuf {
     use std::path::Component;
     let absolute = std::path::absolute(path).unwrap_or_else(|_| path.to_path_buf());
-    let mut lexical = PathBuf::new();
-    for c in absolute.components() {
+    let parts: Vec<Component> = absolute.components().collect();
+    // the longest ancestor that exists (the root at least, for an absolute path)
+    let (mut out, first_missing) = (0..=parts.len())
+        .rev()
+        .find_map(|k| {
+            let prefix: PathBuf = parts[..k].iter().collect();
+            prefix.canonicalize().ok().map(|real| (real, k))
+        })
+        .unwrap_or((PathBuf::new(), 0));
+    for c in &parts[first_missing..] {
         match c {
             Component::CurDir => {}
             Component::ParentDir => {
-                lexical.pop();
+                out.pop();
             }
-            c => lexical.push(c),
+            c => out.push(c),
         }
     }
-    // the longest ancestor that exists, resolved, then the rest
-    let mut rest = Vec::new();
-    let mut existing = lexical.as_path();
-    loop {
-        if let Ok(real) = existing.canonicalize() {
-            return rest.iter().rev().fold(real, |p, name| p.join(name));
-        }
-        match (existing.parent(), existing.file_name()) {
-            (Some(parent), Some(name)) => {
-                rest.push(name.to_os_string());
-                existing = parent;
-            }
-            _ => return lexical,
-        }
-    }
+    out
 }
 
 /// The plan of `args`: scenes, sizes, threads, steps.
@@ -273,6 +268,14 @@ mod tests {
         {
             std::os::unix::fs::symlink(d.join("out"), d.join("link")).unwrap();
             assert!(same_file(&x, &d.join("link/x.csv")));
+        }
+        #[cfg(unix)]
+        {
+            // `..` after a link is the link target's parent, as the system reads it
+            std::fs::create_dir_all(d.join("far/away")).unwrap();
+            std::os::unix::fs::symlink(d.join("far/away"), d.join("out/deep")).unwrap();
+            assert!(same_file(&d.join("far/x.csv"), &d.join("out/deep/../x.csv")));
+            assert!(!same_file(&x, &d.join("out/deep/../x.csv")));
         }
         for same in ["out/./x.csv", "out/../out/x.csv", "new/../out/x.csv"] {
             assert!(same_file(&x, &d.join(same)), "{same}");
