@@ -154,7 +154,7 @@ fn same_file(a: &Path, b: &Path) -> bool {
 fn resolved(path: &Path) -> PathBuf {
     use std::path::Component;
     let absolute = std::path::absolute(path).unwrap_or_else(|_| path.to_path_buf());
-    let parts: Vec<Component> = absolute.components().collect();
+    let parts: Vec<Component<'_>> = absolute.components().collect();
     // the longest ancestor that exists (the root at least, for an absolute path)
     let (mut out, first_missing) = (0..=parts.len())
         .rev()
