@@ -1,5 +1,5 @@
-//! File system helpers: the output folder, and writes that never leave a half-written file
-//! in place of a good one.
+//! File system helpers: the output folder, writes that never leave a half-written file in
+//! place of a good one, and whether two paths name the same file.
 
 use crate::error::OutputError;
 use std::fs;
@@ -52,4 +52,71 @@ pub(crate) fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), OutputEr
         return Err(OutputError::Write { path: path.to_path_buf(), source });
     }
     replace_with(&temp, path)
+}
+
+/// Whether paths `a` and `b` name the same file, whether they exist or not: each made
+/// absolute, its longest existing ancestor resolved (symbolic links, `.` and `..` as the
+/// system reads them), then the rest of it with `.` dropped and `..` taken as the folder
+/// above; so `./x.csv`, `x.csv`, `out/../x.csv` and the same file through a linked folder
+/// match. For the guards that keep one output file from being written over another.
+pub fn same_file(a: &Path, b: &Path) -> bool {
+    resolved(a) == resolved(b)
+}
+
+/// [`same_file`]'s form of `path`.
+fn resolved(path: &Path) -> PathBuf {
+    use std::path::Component;
+    let absolute = std::path::absolute(path).unwrap_or_else(|_| path.to_path_buf());
+    let parts: Vec<Component<'_>> = absolute.components().collect();
+    // the longest ancestor that exists (the root at least, for an absolute path)
+    let (mut out, first_missing) = (0..=parts.len())
+        .rev()
+        .find_map(|k| {
+            let prefix: PathBuf = parts[..k].iter().collect();
+            prefix.canonicalize().ok().map(|real| (real, k))
+        })
+        .unwrap_or((PathBuf::new(), 0));
+    for c in &parts[first_missing..] {
+        match c {
+            Component::CurDir => {}
+            Component::ParentDir => {
+                out.pop();
+            }
+            c => out.push(c),
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn same_file_sees_through_dots_and_linked_folders() {
+        let dir = tempfile::tempdir().unwrap();
+        let d = dir.path();
+        std::fs::create_dir(d.join("out")).unwrap();
+        let x = d.join("out/x.csv");
+        #[cfg(unix)]
+        {
+            std::os::unix::fs::symlink(d.join("out"), d.join("link")).unwrap();
+            assert!(same_file(&x, &d.join("link/x.csv")));
+            // `..` after a link is the link target's parent, as the system reads it
+            std::fs::create_dir_all(d.join("far/away")).unwrap();
+            std::os::unix::fs::symlink(d.join("far/away"), d.join("out/deep")).unwrap();
+            assert!(same_file(&d.join("far/x.csv"), &d.join("out/deep/../x.csv")));
+            assert!(!same_file(&x, &d.join("out/deep/../x.csv")));
+        }
+        for same in ["out/./x.csv", "out/../out/x.csv", "new/../out/x.csv"] {
+            assert!(same_file(&x, &d.join(same)), "{same}");
+        }
+        for other in ["out/y.csv", "x.csv", "out/x.csv/..", "new/x.csv"] {
+            assert!(!same_file(&x, &d.join(other)), "{other}");
+        }
+        // not yet there, below folders not yet there
+        assert!(same_file(&d.join("a/b/c.csv"), &d.join("a/./b/../b/c.csv")));
+        // relative to the current folder
+        assert!(same_file(Path::new("x.csv"), Path::new("./x.csv")));
+    }
 }

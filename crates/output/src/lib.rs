@@ -56,6 +56,7 @@ mod vtk;
 mod writer;
 
 pub use error::OutputError;
+pub use files::same_file;
 pub use frames::{connections_polydata, contacts_polydata, particles_polydata, pfacets_polydata};
 #[cfg(feature = "plot")]
 pub use plot::plot_series;

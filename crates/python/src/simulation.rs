@@ -588,7 +588,7 @@ impl PySimulation {
             let guard = self.lock();
             let settings = guard.run.output_settings();
             let own = settings.directory.join(flexdem_output::CSV_FILE);
-            if settings.series_every.is_some() && std::path::absolute(&path).ok() == Some(own) {
+            if settings.series_every.is_some() && flexdem_output::same_file(&path, &own) {
                 return Err(PyValueError::new_err(format!(
                     "{}: the run writes this file itself; give another path",
                     path.display()

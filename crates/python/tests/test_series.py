@@ -110,6 +110,8 @@ def test_series_are_the_csv_the_command_line_writes(tmp_path):
     # the run's own CSV is not overwritten
     with pytest.raises(ValueError, match="writes this file itself"):
         with_files.write_series(tmp_path / "out" / "series.csv")
+    with pytest.raises(ValueError, match="writes this file itself"):
+        with_files.write_series(tmp_path / "out" / ".." / "out" / "series.csv")
 
 
 def test_resumed_series_continue_the_csv(tmp_path):

@@ -6,6 +6,7 @@ use crate::error::{CliError, Outcome};
 use clap::Args;
 use flexdem_bench::report::{csv, step_times_csv, table_header, table_row};
 use flexdem_bench::{run_plan, Case, Plan, SceneKind};
+use flexdem_io::output::same_file;
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -141,40 +142,6 @@ pub fn bench(args: &BenchArgs) -> Result<Outcome, CliError> {
     Ok(Outcome::Done)
 }
 
-/// Whether paths `a` and `b` name the same file, whether they exist or not: each made
-/// absolute, its longest existing ancestor resolved (symbolic links, `.` and `..` as the
-/// system reads them), then the rest of it with `.` dropped and `..` taken as the folder
-/// above; so `./x.csv`, `x.csv`, `out/../x.csv` and the same file through a linked folder
-/// match.
-fn same_file(a: &Path, b: &Path) -> bool {
-    resolved(a) == resolved(b)
-}
-
-/// [`same_file`]'s form of `path`.
-fn resolved(path: &Path) -> PathBuf {
-    use std::path::Component;
-    let absolute = std::path::absolute(path).unwrap_or_else(|_| path.to_path_buf());
-    let parts: Vec<Component<'_>> = absolute.components().collect();
-    // the longest ancestor that exists (the root at least, for an absolute path)
-    let (mut out, first_missing) = (0..=parts.len())
-        .rev()
-        .find_map(|k| {
-            let prefix: PathBuf = parts[..k].iter().collect();
-            prefix.canonicalize().ok().map(|real| (real, k))
-        })
-        .unwrap_or((PathBuf::new(), 0));
-    for c in &parts[first_missing..] {
-        match c {
-            Component::CurDir => {}
-            Component::ParentDir => {
-                out.pop();
-            }
-            c => out.push(c),
-        }
-    }
-    out
-}
-
 /// The plan of `args`: scenes, sizes, threads, steps.
 fn plan(args: &BenchArgs) -> Result<Plan, CliError> {
     let mut scenes = Vec::new();
@@ -252,40 +219,4 @@ fn write_csv(path: &Path, text: &str) -> Result<(), CliError> {
         std::fs::create_dir_all(dir).map_err(fail)?;
     }
     std::fs::write(path, text).map_err(fail)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn same_file_sees_through_dots_and_linked_folders() {
-        let dir = tempfile::tempdir().unwrap();
-        let d = dir.path();
-        std::fs::create_dir(d.join("out")).unwrap();
-        let x = d.join("out/x.csv");
-        #[cfg(unix)]
-        {
-            std::os::unix::fs::symlink(d.join("out"), d.join("link")).unwrap();
-            assert!(same_file(&x, &d.join("link/x.csv")));
-        }
-        #[cfg(unix)]
-        {
-            // `..` after a link is the link target's parent, as the system reads it
-            std::fs::create_dir_all(d.join("far/away")).unwrap();
-            std::os::unix::fs::symlink(d.join("far/away"), d.join("out/deep")).unwrap();
-            assert!(same_file(&d.join("far/x.csv"), &d.join("out/deep/../x.csv")));
-            assert!(!same_file(&x, &d.join("out/deep/../x.csv")));
-        }
-        for same in ["out/./x.csv", "out/../out/x.csv", "new/../out/x.csv"] {
-            assert!(same_file(&x, &d.join(same)), "{same}");
-        }
-        for other in ["out/y.csv", "x.csv", "out/x.csv/..", "new/x.csv"] {
-            assert!(!same_file(&x, &d.join(other)), "{other}");
-        }
-        // not yet there, below folders not yet there
-        assert!(same_file(&d.join("a/b/c.csv"), &d.join("a/./b/../b/c.csv")));
-        // relative to the current folder
-        assert!(same_file(Path::new("x.csv"), Path::new("./x.csv")));
-    }
 }
