@@ -60,14 +60,17 @@ pub fn read_spheres(text: &str) -> Result<Vec<(Vec3, Real)>, String> {
         .enumerate()
         .map(|(i, l)| (i + 1, l.trim()))
         .filter(|(_, l)| !l.is_empty() && !l.starts_with('#'));
-    let Some((_, header)) = lines.next() else {
+    let Some((header_line, header)) = lines.next() else {
         return Err("the file is empty: expected a header `x,y,z,radius`".into());
     };
     let names: Vec<&str> = header.split(',').map(str::trim).collect();
     let mut index = [0usize; 4];
     for (slot, column) in index.iter_mut().zip(COLUMNS) {
         *slot = names.iter().position(|n| *n == column).ok_or_else(|| {
-            format!("line 1: the header has no column `{column}` (it needs x, y, z and radius)")
+            format!(
+                "line {header_line}: the header has no column `{column}` (it needs x, y, z and \
+                 radius)"
+            )
         })?;
     }
     let mut spheres = Vec::new();
@@ -156,6 +159,9 @@ mod tests {
     fn bad_files_name_the_line() {
         assert!(read_spheres("").unwrap_err().contains("empty"));
         assert!(read_spheres("x,y,r\n").unwrap_err().contains("no column `z`"));
+        // the header's own line, after comments and blank lines
+        let e = read_spheres("# packing\n\nx,y,z,r\n").unwrap_err();
+        assert!(e.starts_with("line 3: the header has no column `radius`"), "{e}");
         let e = read_spheres("x,y,z,radius\n1,2,3,0.1\n1,2,three,0.1\n").unwrap_err();
         assert!(e.starts_with("line 3") && e.contains("`z`"), "{e}");
         assert!(read_spheres("x,y,z,radius\n1,2,3\n").unwrap_err().contains("3 fields"));
