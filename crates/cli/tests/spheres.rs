@@ -58,6 +58,13 @@ fn spheres_of_a_scene_and_of_a_checkpoint_are_written_and_read_back() {
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let first = rows(&csv);
     assert_eq!(first.len(), 30);
+    // the input as output, however the path is written: refused, the input kept
+    let scene_text = std::fs::read_to_string(&packed).unwrap();
+    let same = dir.join(".").join("packed.toml");
+    let out = flexdem(&["spheres".as_ref(), packed.as_os_str(), "-o".as_ref(), same.as_os_str()]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("input file"));
+    assert_eq!(std::fs::read_to_string(&packed).unwrap(), scene_text);
 
     // a scene that reads them back, run with a checkpoint
     let reused = dir.join("reused.toml");

@@ -9,6 +9,7 @@ use crate::report::plural;
 use flexdem_elements::{ParticleKind, Particles};
 use flexdem_geom::{Real, Vec3};
 use flexdem_io::checkpoint::read_checkpoint;
+use flexdem_io::output::same_file;
 use flexdem_io::scene::sphere_file::{in_space_order, write_spheres};
 
 /// Centres and radii of the free spheres (not the nodes of structures).
@@ -22,6 +23,10 @@ fn free_spheres(p: &Particles) -> Vec<(Vec3, Real)> {
 /// Writes the free spheres of `args.input` (a `.toml` scene, built; anything else is read as
 /// a checkpoint) to `args.output`, in the order of space.
 pub fn spheres(args: &SpheresArgs) -> Result<Outcome, CliError> {
+    if same_file(&args.output, &args.input) {
+        let shown = args.output.display();
+        return Err(CliError::Input(format!("-o {shown}: that is the input file")));
+    }
     let is_scene = args.input.extension().is_some_and(|e| e.eq_ignore_ascii_case("toml"));
     let mut spheres = if is_scene {
         free_spheres(&read_scene(&args.input)?.model.particles)
