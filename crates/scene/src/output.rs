@@ -145,6 +145,14 @@ impl Builder<'_> {
                 "series are defined: give `series_every = N` (steps between CSV rows)",
             ));
         }
+        if o.plot == Some(true) && series.is_empty() {
+            return Err(ctx.at(
+                spec.span(),
+                "output.plot",
+                "is true but there is nothing to plot: add `[[output.series]]` (with \
+                 `series_every`), or remove `plot`",
+            ));
+        }
         Ok(OutputSettings {
             directory,
             vtk_every,

@@ -93,6 +93,7 @@ CASES = {
     "series_stress_needs_region": (BASE + SERIES.replace('[[output.series]]', '[[output.series]]  # <- error') + 'quantity = "stress"\n', ["`output.series.box`", "needs a region", "cylinder"]),
     "series_key_of_other_quantity": (BASE + SERIES + 'quantity = "energy"\nwall = 0  # <- error\n', ["`output.series.wall`", "quantity = \"energy\" does not take `wall`", "wall_force and wall_stress"]),
     "series_flat_box": (BASE + SERIES + 'quantity = "solid_fraction"\nbox = { min = [0, 0, 0], max = [1, 0, 1] }  # <- error\n', ["`output.series.box`", "not below max", "no volume"]),
+    "plot_without_series": (BASE + '\n[output]  # <- error\nvtk_every = 100\nplot = true\n', ["`output.plot`", "nothing to plot", "[[output.series]]"]),
     # viscous contact damping (model.md §7)
     "restitution_out_of_range": (SIM + '\n[materials.steel]\nyoung = 1e9\npoisson = 0.3\ndensity = 7850\nfriction_angle_deg = 30\nrestitution = 1.2  # <- error\n', ["`materials.steel.restitution`", "is 1.2", "0 < restitution <= 1"]),
     "damping_restitution_and_rates": (SIM + '\n[materials.steel]\nyoung = 1e9\npoisson = 0.3\ndensity = 7850\nfriction_angle_deg = 30\nrestitution = 0.5\ngamma_n = 100  # <- error\n', ["`materials.steel.gamma_n`", "conflicts with `restitution`", "not both"]),
