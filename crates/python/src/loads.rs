@@ -15,14 +15,12 @@ use std::path::Path;
 /// The name messages give the text of a script's loads.
 const SOURCE: &str = "<loads>";
 
-/// `loads` (an iterable of dicts, each a `[[loads]]` table) as engine loads over the
-/// simulation's current model; errors as [`SceneError`] with the scene reader's message,
-/// located in the TOML text the dicts become (`flexdem.to_toml({"loads": [...]})`).
-pub(crate) fn from_python(
-    loads: &Bound<'_, PyAny>,
-    sim: &Simulation,
-    names: &SceneNames,
-) -> PyResult<Vec<Load>> {
+/// `loads` (an iterable of dicts, each a `[[loads]]` table) as the TOML text of a scene's
+/// `[[loads]]` tables (`flexdem.to_toml({"loads": [...]})`). This runs the script's code (a
+/// generator, a mapping's methods), so it is called before the simulation is locked: code
+/// that reads the simulation, as `(... sim.masses[i] ...) for i in top` does, would else wait
+/// for its own lock for ever.
+pub(crate) fn to_text(loads: &Bound<'_, PyAny>) -> PyResult<String> {
     let py = loads.py();
     let list = PyList::empty(py);
     for load in loads.try_iter()? {
@@ -30,8 +28,13 @@ pub(crate) fn from_python(
     }
     let file = PyDict::new(py);
     file.set_item("loads", list)?;
-    let text = dict_to_toml(file.as_any())?;
-    parse_loads(&text, Path::new(SOURCE), sim.model(), names)
+    dict_to_toml(file.as_any())
+}
+
+/// The loads of [`to_text`]'s `text` as engine loads over the simulation's current model;
+/// errors as [`SceneError`] with the scene reader's message, located in that text.
+pub(crate) fn parse(text: &str, sim: &Simulation, names: &SceneNames) -> PyResult<Vec<Load>> {
+    parse_loads(text, Path::new(SOURCE), sim.model(), names)
         .map_err(|e| SceneError::new_err(e.to_string()))
 }
 

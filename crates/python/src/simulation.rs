@@ -545,10 +545,10 @@ impl PySimulation {
     #[pyo3(signature = (**load))]
     fn add_load(&self, py: Python<'_>, load: Option<&Bound<'_, PyDict>>) -> PyResult<()> {
         let load = load.cloned().unwrap_or_else(|| PyDict::new(py));
-        let list = PyList::new(py, [load])?;
+        let text = loads::to_text(PyList::new(py, [load])?.as_any())?;
         let mut guard = self.lock();
         let Inner { run, names, .. } = &mut *guard;
-        let parsed = loads::from_python(list.as_any(), run.sim(), names)?;
+        let parsed = loads::parse(&text, run.sim(), names)?;
         let sim = run.sim_mut();
         for load in parsed {
             sim.add_load(load).map_err(|e| SceneError::new_err(e.to_string()))?;
@@ -559,9 +559,10 @@ impl PySimulation {
     /// Replaces every load by `loads`, a list of dicts with the keys of `add_load` (an
     /// empty list removes them all); all are checked first, nothing changes on an error.
     fn set_loads(&self, loads: &Bound<'_, PyAny>) -> PyResult<()> {
+        let text = loads::to_text(loads)?;
         let mut guard = self.lock();
         let Inner { run, names, .. } = &mut *guard;
-        let parsed = loads::from_python(loads, run.sim(), names)?;
+        let parsed = loads::parse(&text, run.sim(), names)?;
         run.sim_mut().set_loads(parsed).map_err(|e| SceneError::new_err(e.to_string()))
     }
 

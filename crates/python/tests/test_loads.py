@@ -2,6 +2,8 @@
 [[loads]], a known force on a free sphere, and its work in the energy terms."""
 
 import re
+import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -85,6 +87,25 @@ def test_total_force_shared_and_loads_read_back():
     assert len(loads) == 2
     np.testing.assert_array_equal(loads[0]["select"]["ids"], [10])
     assert loads[1]["ramp"] == {"start": 0.0, "duration": 0.5}
+
+
+def test_loads_from_a_generator_that_reads_the_simulation():
+    # The generator reads sim while set_loads runs: that waited for the simulation's own
+    # lock for ever (with the GIL held, so not even Ctrl-C stopped it). In a child process,
+    # so that a regression fails by its timeout instead of hanging the suite.
+    code = (
+        "import sys, flexdem\n"
+        "sim = flexdem.Simulation.from_toml(sys.stdin.read())\n"
+        "sim.set_loads({'select': {'ids': [i]}, 'force': [0, 0, -9.81 * sim.masses[i]]}"
+        " for i in (0, 10))\n"
+        "print(len(sim.loads()), sim.loads()[1]['force'][2] / sim.masses[10])\n"
+    )
+    done = subprocess.run([sys.executable, "-c", code], input=CANTILEVER, capture_output=True,
+                          text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    count, g = done.stdout.split()
+    assert count == "2"
+    assert float(g) == pytest.approx(-9.81, rel=1e-12)
 
 
 def test_replacing_the_load_between_stages_reverses_the_motion():
