@@ -481,6 +481,37 @@ fn a_state_the_engine_refuses_is_reported_with_the_file() {
     assert!(err.to_string().contains("refused.ckp"), "{err}");
 }
 
+/// Run settings no scene gives (an edited file with its checksum recomputed): refused with
+/// the file named, where an output period of 0 made a resumed run divide by zero.
+#[test]
+fn run_settings_no_scene_gives_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("settings.ckp");
+    let good = checkpoint_of(&small_simulation());
+    let mut zero_series = good.clone();
+    zero_series.output.series_every = Some(0);
+    let mut zero_vtk = good.clone();
+    zero_vtk.output.vtk_every = Some(0);
+    let mut no_threads = good.clone();
+    no_threads.threads = Some(0);
+    let mut too_many = good.clone();
+    too_many.threads = Some(100_000);
+    for (c, what) in [
+        (zero_series, "series_every = 0"),
+        (zero_vtk, "vtk_every = 0"),
+        (no_threads, "threads = 0"),
+        (too_many, "threads = 100000"),
+    ] {
+        write_checkpoint(&path, &c).unwrap();
+        let err = restore_checkpoint(&path).map(|_| ()).unwrap_err();
+        assert!(matches!(&err, CheckpointError::Refused { path: Some(p), .. } if *p == path));
+        let text = err.to_string();
+        assert!(text.contains("settings.ckp") && text.contains(what), "{text}");
+    }
+    write_checkpoint(&path, &good).unwrap();
+    assert!(restore_checkpoint(&path).is_ok());
+}
+
 proptest! {
     #![proptest_config(ProptestConfig { cases: 200, ..ProptestConfig::default() })]
 

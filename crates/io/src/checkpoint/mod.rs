@@ -70,7 +70,7 @@ use flexdem_integrate::{Simulation, SimulationError, State};
 /// What the output had written, stored in checkpoints (defined by `flexdem-output`).
 pub use flexdem_output::OutputProgress;
 use flexdem_output::OutputSettings;
-use flexdem_scene::RunLength;
+use flexdem_scene::{RunLength, MAX_THREADS};
 use serde::{Deserialize, Serialize};
 use std::fs::File;
 use std::io::{self, Read};
@@ -120,7 +120,8 @@ pub struct ResumeInfo {
 
 impl Checkpoint {
     /// Rebuilds the simulation with [`Simulation::from_state`], which checks the state
-    /// (a file may have been written by a buggy build or edited): the error is
+    /// (a file may have been written by a buggy build or edited), after checking the run
+    /// settings beside it (output periods, threads): the error is
     /// [`CheckpointError::Refused`] without a file name; [`restore_checkpoint`] adds it.
     pub fn into_simulation(self) -> Result<(Simulation, ResumeInfo), CheckpointError> {
         let info = ResumeInfo {
@@ -131,6 +132,16 @@ impl Checkpoint {
             output_progress: self.output_progress,
         };
         let refused = |source| CheckpointError::Refused { path: None, source };
+        check::check_run_settings(info.threads, &info.output).map_err(|value| {
+            refused(SimulationError::Setting {
+                what: "run settings".into(),
+                value,
+                expected: format!(
+                    "the settings of a scene (output periods of at least 1 step, 1 to \
+                     {MAX_THREADS} threads)"
+                ),
+            })
+        })?;
         check::check_state(&self.state).map_err(|value| {
             refused(SimulationError::Setting {
                 what: "simulation state".into(),
