@@ -50,11 +50,19 @@ impl Ctx<'_> {
         }
     }
 
-    /// Three finite numbers, not all zero (a direction; any length).
+    /// Three finite numbers, not all zero (a direction; any length). As given when its
+    /// squared length is a normal float; else (a length above ~1e154 or below ~1e-154,
+    /// whose square overflows or underflows, so that `normalize` would give NaN) divided
+    /// by its largest |component|, which keeps the direction.
     pub fn direction(&self, v: &S<V3>, key: &str) -> Result<Vec3, SceneError> {
         let d = self.vec3(v, key, "a direction, any length")?;
-        if d.norm() > 0.0 && d.norm().is_finite() {
-            Ok(d)
+        let n2 = d.norm_squared();
+        if n2.is_finite() && n2 >= Real::MIN_POSITIVE {
+            return Ok(d);
+        }
+        let largest = d.amax();
+        if largest > 0.0 {
+            Ok(d / largest)
         } else {
             Err(self.at(v.span(), key, "is [0, 0, 0]: expected a non-zero direction [x, y, z]"))
         }

@@ -415,3 +415,24 @@ segments = 200
     let err = parse_scene(&typo, Path::new("t.toml")).unwrap_err().to_string();
     assert!(err.contains("self_contact"), "{err}");
 }
+
+/// A direction may have any length: one whose squared length overflows or underflows
+/// (1e200, 1e-200) is the same direction as a unit one, not "[0, 0, 0]".
+#[test]
+fn directions_of_huge_and_tiny_lengths_are_their_direction() {
+    for (given, unit) in [
+        ("[0, 1e200, 0]", Vec3::y()),
+        ("[-1e-200, 0, 0]", -Vec3::x()),
+        ("[0, 0, 3]", Vec3::z()),
+        ("[1e200, 1e200, 0]", Vec3::new(1.0, 1.0, 0.0).normalize()),
+    ] {
+        let s =
+            scene(&format!("[[walls]]\npoint = [0, 0, 0]\nnormal = {given}\nmaterial = \"m\"\n"));
+        let n = s.model.walls[0].normal;
+        assert!(close(n, unit) && (n.norm() - 1.0).abs() < 1e-15, "{given}: {n:?}");
+    }
+    let text =
+        format!("{HEAD}[[walls]]\npoint = [0, 0, 0]\nnormal = [0, 0, 0]\nmaterial = \"m\"\n");
+    let e = parse_scene(&text, Path::new("s.toml")).map(|_| ()).unwrap_err().to_string();
+    assert!(e.contains("non-zero direction"), "{e}");
+}
