@@ -508,6 +508,14 @@ fn run_settings_no_scene_gives_are_refused() {
         let text = err.to_string();
         assert!(text.contains("settings.ckp") && text.contains(what), "{text}");
     }
+    // a series of a particle the model does not have: the writer's own check, output or not
+    let mut bad_series = good.clone();
+    bad_series.output.series =
+        vec![SeriesSpec { name: "p".into(), quantity: Quantity::Position(1_000_000) }];
+    write_checkpoint(&path, &bad_series).unwrap();
+    let err = restore_checkpoint(&path).map(|_| ()).unwrap_err();
+    assert!(matches!(&err, CheckpointError::Refused { path: Some(p), .. } if *p == path));
+    assert!(err.to_string().contains("1000000"), "{err}");
     write_checkpoint(&path, &good).unwrap();
     assert!(restore_checkpoint(&path).is_ok());
 }

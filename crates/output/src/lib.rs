@@ -68,6 +68,6 @@ pub use series::{
 pub use table::{format_number, CsvSeries};
 pub use vtk::{ArrayValues, CellKind, DataArray, PolyData};
 pub use writer::{
-    frame_file_name, pvd_path, write_frame, Output, OutputProgress, OutputReport, CSV_FILE,
-    PLOT_FILE, PVD_FILE, PVD_REWRITE_PERIOD,
+    check_output_settings, frame_file_name, pvd_path, write_frame, Output, OutputProgress,
+    OutputReport, CSV_FILE, PLOT_FILE, PVD_FILE, PVD_REWRITE_PERIOD,
 };

@@ -83,7 +83,7 @@ impl Output {
     /// Checks the settings against `sim`, creates the output folder and, when series are
     /// recorded, writes the CSV header.
     pub fn new(settings: &OutputSettings, sim: &Simulation) -> Result<Output, OutputError> {
-        check_settings(settings, sim)?;
+        check_output_settings(settings, sim)?;
         files::create_directory(&settings.directory)?;
         let mut output = Output::empty(settings);
         if settings.series_every.is_some() {
@@ -105,7 +105,7 @@ impl Output {
         sim: &Simulation,
         progress: &OutputProgress,
     ) -> Result<Output, OutputError> {
-        check_settings(settings, sim)?;
+        check_output_settings(settings, sim)?;
         files::create_directory(&settings.directory)?;
         let mut output = Output::empty(settings);
         for &(step, time) in &progress.vtk_frames {
@@ -288,8 +288,12 @@ pub fn write_frame(directory: &Path, sim: &Simulation) -> Result<Vec<PathBuf>, O
 }
 
 /// Checks `settings` against `sim`: output periods of at least one step, series to plot when
-/// a plot is asked for, valid series.
-fn check_settings(settings: &OutputSettings, sim: &Simulation) -> Result<(), OutputError> {
+/// a plot is asked for, valid series. [`Output`] checks this when it opens; a checkpoint's
+/// settings are checked with it on resume, output or not (`flexdem-io`).
+pub fn check_output_settings(
+    settings: &OutputSettings,
+    sim: &Simulation,
+) -> Result<(), OutputError> {
     for (what, every) in
         [("vtk_every", settings.vtk_every), ("series_every", settings.series_every)]
     {

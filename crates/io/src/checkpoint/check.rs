@@ -8,8 +8,6 @@ use flexdem_contact::{FrictionalContact, FrictionalParams};
 use flexdem_elements::virtual_sphere::{Feature, Site};
 use flexdem_geom::{Real, Vec3};
 use flexdem_integrate::{Contact, ContactKey, Load, PairContact, Ramp, State};
-use flexdem_output::OutputSettings;
-use flexdem_scene::MAX_THREADS;
 
 fn finite(v: &Vec3) -> bool {
     v.iter().all(|x| x.is_finite())
@@ -116,26 +114,6 @@ fn check_load(l: &Load) -> Result<(), String> {
         }
         _ => Ok(()),
     }
-}
-
-/// `Err(what)` when the run settings beside the state hold values no scene gives: an output
-/// period of 0 steps (the series recorder would divide by it), a thread count outside
-/// `1..=MAX_THREADS` (the scene's and the command line's range).
-pub(crate) fn check_run_settings(
-    threads: Option<usize>,
-    output: &OutputSettings,
-) -> Result<(), String> {
-    if let Some(n) = threads {
-        if n == 0 || n > MAX_THREADS {
-            return Err(format!("threads = {n}, outside 1..={MAX_THREADS}"));
-        }
-    }
-    for (what, every) in [("vtk_every", output.vtk_every), ("series_every", output.series_every)] {
-        if every == Some(0) {
-            return Err(format!("output {what} = 0 steps"));
-        }
-    }
-    Ok(())
 }
 
 /// `Err(what)` when the contacts or loads of `s` hold numbers no run produces.

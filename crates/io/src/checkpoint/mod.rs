@@ -69,7 +69,7 @@ mod check;
 use flexdem_integrate::{Simulation, SimulationError, State};
 /// What the output had written, stored in checkpoints (defined by `flexdem-output`).
 pub use flexdem_output::OutputProgress;
-use flexdem_output::OutputSettings;
+use flexdem_output::{check_output_settings, OutputSettings};
 use flexdem_scene::{RunLength, MAX_THREADS};
 use serde::{Deserialize, Serialize};
 use std::fs::File;
@@ -120,8 +120,8 @@ pub struct ResumeInfo {
 
 impl Checkpoint {
     /// Rebuilds the simulation with [`Simulation::from_state`], which checks the state
-    /// (a file may have been written by a buggy build or edited), after checking the run
-    /// settings beside it (output periods, threads): the error is
+    /// (a file may have been written by a buggy build or edited), and checks the run
+    /// settings beside it (threads; the output's, with the writer's own check): the error is
     /// [`CheckpointError::Refused`] without a file name; [`restore_checkpoint`] adds it.
     pub fn into_simulation(self) -> Result<(Simulation, ResumeInfo), CheckpointError> {
         let info = ResumeInfo {
@@ -132,16 +132,13 @@ impl Checkpoint {
             output_progress: self.output_progress,
         };
         let refused = |source| CheckpointError::Refused { path: None, source };
-        check::check_run_settings(info.threads, &info.output).map_err(|value| {
-            refused(SimulationError::Setting {
+        if let Some(n) = info.threads.filter(|&n| n == 0 || n > MAX_THREADS) {
+            return Err(refused(SimulationError::Setting {
                 what: "run settings".into(),
-                value,
-                expected: format!(
-                    "the settings of a scene (output periods of at least 1 step, 1 to \
-                     {MAX_THREADS} threads)"
-                ),
-            })
-        })?;
+                value: format!("threads = {n}"),
+                expected: format!("a whole number in [1, {MAX_THREADS}], as a scene gives"),
+            }));
+        }
         check::check_state(&self.state).map_err(|value| {
             refused(SimulationError::Setting {
                 what: "simulation state".into(),
@@ -150,6 +147,15 @@ impl Checkpoint {
             })
         })?;
         let sim = Simulation::from_state(self.state).map_err(refused)?;
+        // the output's own check (periods, plot, series against the model), which the
+        // writer makes when it opens: a run without output still records the series
+        check_output_settings(&info.output, &sim).map_err(|e| {
+            refused(SimulationError::Setting {
+                what: "output".into(),
+                value: e.to_string(),
+                expected: "the output settings of a scene".into(),
+            })
+        })?;
         Ok((sim, info))
     }
 }
