@@ -29,9 +29,9 @@ impl SeriesRecorder {
         SeriesRecorder { specs, every, rows: Vec::new() }
     }
 
-    /// Starts with the rows of `folder/series.csv` (the ones a resumed output kept), when
-    /// that file has this recorder's header; otherwise with none.
-    pub(crate) fn continue_csv(&mut self, folder: &Path) {
+    /// Starts with the first `rows` rows of `folder/series.csv` (the checkpoint's: the ones a
+    /// resumed output keeps), when that file has this recorder's header; otherwise with none.
+    pub(crate) fn continue_csv(&mut self, folder: &Path, rows: u64) {
         let columns = header_columns(&self.specs);
         let Ok(text) = std::fs::read_to_string(folder.join(CSV_FILE)) else { return };
         let mut lines = text.lines();
@@ -43,6 +43,7 @@ impl SeriesRecorder {
                 line.split(',').map(|v| v.parse::<Real>().ok()).collect::<Option<Vec<_>>>()
             })
             .take_while(|row| row.len() == columns.len())
+            .take(usize::try_from(rows).unwrap_or(usize::MAX))
             .collect();
     }
 

@@ -161,7 +161,8 @@ impl PySimulation {
 
     /// Resumes the checkpoint at `path` (written by `save_checkpoint` or by `flexdem run`):
     /// the simulation continues bit-identically. `output`: False/None writes nothing, True
-    /// continues the checkpointed run's output.
+    /// continues the checkpointed run's output (from a checkpoint at the end of its run:
+    /// once `run` goes on).
     #[staticmethod]
     #[pyo3(signature = (path, *, output=false, threads=None))]
     fn resume(
@@ -181,13 +182,14 @@ impl PySimulation {
                 let settings = &checkpoint.output;
                 let series = SeriesRecorder::new(settings.series.clone(), settings.series_every);
                 let folder = settings.directory.clone();
+                let rows = checkpoint.output_progress.series_rows;
                 let run = Run::from_checkpoint(checkpoint, &path, options)?;
-                Ok((run, series, folder))
+                Ok((run, series, folder, rows))
             })
-            .map(|(run, mut series, folder): (Run, SeriesRecorder, PathBuf)| {
+            .map(|(run, mut series, folder, rows): (Run, SeriesRecorder, PathBuf, u64)| {
                 if output {
-                    // the rows before the checkpoint, as the resumed output kept them
-                    series.continue_csv(&folder);
+                    // the rows before the checkpoint, as the resumed output keeps them
+                    series.continue_csv(&folder, rows);
                 }
                 (run, series)
             })
@@ -577,8 +579,8 @@ impl PySimulation {
     /// per column of the command line's `series.csv`: `time_s`, `step`, then
     /// `NAME_COMPONENT_UNIT` (`impactor_position_z_m`, `e_kinetic_translation_J`, ...).
     /// Rows are recorded as the CSV's, whether or not output is written: at the start, every
-    /// `series_every` steps, and at `finish`. A resumed simulation starts with the rows its
-    /// output kept (with `output=True`), else with none.
+    /// `series_every` steps, and at `finish`. A resumed simulation starts with the
+    /// checkpoint's rows of its `series.csv` (with `output=True`), else with none.
     fn series<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         self.lock().series.to_dict(py)
     }

@@ -127,6 +127,30 @@ def test_resumed_series_continue_the_csv(tmp_path):
     np.testing.assert_array_equal(quiet.series()["step"], [30, 40, 50])
 
 
+def test_a_run_resumed_at_its_end_continues_the_csv_once_moved_on(tmp_path):
+    sim = flexdem.Simulation.from_toml(FALLING, base_dir=tmp_path, output=True)
+    sim.run()  # to the scene's 95 steps
+    sim.save_checkpoint(tmp_path / "c.flexdem")
+    sim.finish()  # adds the row of step 95, off the schedule
+    csv_path = tmp_path / "out" / "series.csv"
+    written = csv_path.read_text()
+    resumed = flexdem.Simulation.resume(tmp_path / "c.flexdem", output=True)
+    assert resumed.steps == 95
+    np.testing.assert_array_equal(resumed.series()["step"], np.arange(0, 91, 10))
+    assert csv_path.read_text() == written  # left as the run wrote it
+    resumed.run(steps=20)
+    resumed.finish()
+    steps = list(range(0, 111, 10)) + [115]
+    np.testing.assert_array_equal(resumed.series()["step"], steps)
+    with open(csv_path) as f:
+        assert [int(float(row["step"])) for row in csv.DictReader(f)] == steps
+    # the same file as a run of 115 steps without a stop
+    whole = flexdem.Simulation.from_toml(FALLING, base_dir=tmp_path / "w", output=True)
+    whole.run(steps=115)
+    whole.finish()
+    assert (tmp_path / "w" / "out" / "series.csv").read_text() == csv_path.read_text()
+
+
 def pieces(path):
     """The attributes of the <Piece> of a .vtp file."""
     return ET.parse(path).getroot().find("PolyData/Piece").attrib

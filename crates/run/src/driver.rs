@@ -48,6 +48,10 @@ pub struct Run {
     sim: Simulation,
     /// The output being written (None: nothing is written).
     output: Option<Output>,
+    /// A resumed run's output not opened yet: the checkpoint's run length was reached, so the
+    /// output was left as that run wrote it. It opens when the run steps on
+    /// ([`Run::open_resumed_output`]) and its progress is what checkpoints store until then.
+    resumed_output: Option<ResumedOutput>,
     /// The output settings (the series give the tracked quantities even without output).
     output_settings: OutputSettings,
     /// Where the run ends, since the start of the simulation. Stored in checkpoints.
@@ -67,6 +71,14 @@ pub struct Run {
     /// The first error of the run, as reported in the summary.
     failure: Option<String>,
     checkpoint_written: Option<PathBuf>,
+}
+
+/// A checkpoint's output, to continue once the resumed run steps on.
+struct ResumedOutput {
+    /// What the checkpointed run had written.
+    progress: OutputProgress,
+    /// The checkpoint file (named in errors).
+    checkpoint: PathBuf,
 }
 
 /// `path` made absolute against the current folder (so that a checkpoint can be resumed
@@ -145,8 +157,9 @@ impl Run {
     }
 
     /// Sets up the run that continues `checkpoint` (read from `path`) to its run length (or
-    /// `options.steps` more), appending to its output. Nothing is opened when the run length
-    /// is already reached ([`Run::is_done`]): the output is left as the run wrote it. The
+    /// `options.steps` more), appending to its output. When the run length is already
+    /// reached ([`Run::is_done`]) the output is opened only once the run steps on (a later
+    /// [`Run::set_target`], then [`Run::advance`]): until then it is left as the run wrote it. The
     /// worker threads must be set up before ([`crate::configure_threads`]; the checkpoint's
     /// `threads` are the ones the run had).
     pub fn from_checkpoint(
@@ -167,15 +180,20 @@ impl Run {
         if options.no_output {
             without_files(&mut settings);
         }
-        let output = if writes_something(&settings) && !reached(&sim, target) {
-            let output = Output::resume(&settings, &sim, &info.output_progress)
-                .map_err(|source| RunError::OutputResume { path: path.to_owned(), source })?;
-            Some(output)
-        } else {
-            None
-        };
+        let mut output = None;
+        let mut resumed_output = None;
+        if writes_something(&settings) {
+            if reached(&sim, target) {
+                let checkpoint = path.to_owned();
+                resumed_output = Some(ResumedOutput { progress: info.output_progress, checkpoint });
+            } else {
+                let resumed = Output::resume(&settings, &sim, &info.output_progress)
+                    .map_err(|source| RunError::OutputResume { path: path.to_owned(), source })?;
+                output = Some(resumed);
+            }
+        }
         let checkpoint_path = absolute(options.checkpoint_path.as_deref().unwrap_or(path));
-        Ok(Run::assemble(
+        let mut run = Run::assemble(
             sim,
             output,
             settings,
@@ -184,7 +202,36 @@ impl Run {
             info.scene,
             checkpoint_path,
             options,
-        ))
+        );
+        run.resumed_output = resumed_output;
+        Ok(run)
+    }
+
+    /// Opens the output of a run resumed at its run length once it steps on: the files are
+    /// cut back to the checkpoint's progress, as for any resumed run (the row its end added is
+    /// dropped, and its frame leaves the `.pvd`), and the current state is recorded if due.
+    fn open_resumed_output(&mut self) -> Result<(), RunError> {
+        let Some(resumed) = self.resumed_output.as_ref().filter(|_| !self.is_done()) else {
+            return Ok(());
+        };
+        let mut output =
+            Output::resume(&self.output_settings, &self.sim, &resumed.progress).map_err(
+                |source| RunError::OutputResume { path: resumed.checkpoint.clone(), source },
+            )?;
+        output.record(&self.sim).map_err(RunError::Output)?;
+        self.output = Some(output);
+        self.resumed_output = None;
+        Ok(())
+    }
+
+    /// The output's progress for a checkpoint: what is written, or what the checkpoint this
+    /// run resumed had written while its output is not open yet.
+    fn output_progress(&self) -> OutputProgress {
+        match (&self.output, &self.resumed_output) {
+            (Some(output), _) => output.progress(),
+            (None, Some(resumed)) => resumed.progress.clone(),
+            (None, None) => OutputProgress { vtk_frames: Vec::new(), series_rows: 0 },
+        }
     }
 
     /// A run not started yet.
@@ -201,6 +248,7 @@ impl Run {
         Run {
             sim,
             output,
+            resumed_output: None,
             output_settings,
             target,
             threads,
@@ -299,6 +347,7 @@ impl Run {
             };
             recorded.map_err(|e| self.fail(RunError::Output(e)))?;
         }
+        self.open_resumed_output().map_err(|e| self.fail(e))?;
         let mut done = 0;
         loop {
             if self.is_done() {
@@ -344,11 +393,7 @@ impl Run {
     /// Writes the checkpoint of the current state to [`Run::checkpoint_path`], with the
     /// output's progress: resuming from it continues bit-identically.
     pub fn save_checkpoint(&mut self) -> Result<(), RunError> {
-        let output_progress = self
-            .output
-            .as_ref()
-            .map(Output::progress)
-            .unwrap_or(OutputProgress { vtk_frames: Vec::new(), series_rows: 0 });
+        let output_progress = self.output_progress();
         let checkpoint = Checkpoint {
             state: self.sim.state().clone(),
             run: self.target,

@@ -131,6 +131,50 @@ fn an_interrupted_run_resumes_to_the_same_end_as_an_uninterrupted_one() {
 }
 
 #[test]
+fn a_run_resumed_at_its_end_continues_its_output_once_moved_on() {
+    let dir = tempfile::tempdir().unwrap();
+    let (whole_dir, parts_dir) = (dir.path().join("whole"), dir.path().join("parts"));
+    let scene = example("tube_impact_solid.toml");
+    let options = |out: &Path, steps| RunOptions {
+        steps: Some(steps),
+        output_directory: Some(out.into()),
+        ..RunOptions::default()
+    };
+    let mut whole = Run::from_scene(&scene, options(&whole_dir, 40)).unwrap();
+    assert_eq!(whole.execute(&mut NoObserver).unwrap().status, Status::Completed);
+
+    // a run of 25 steps with a checkpoint at its last step; its end adds a row and a frame
+    // at step 25, off the schedule (rows every 10 steps, frames every 100)
+    let first = RunOptions { checkpoint_every: Some(25), ..options(&parts_dir, 25) };
+    let mut part = Run::from_scene(&scene, first).unwrap();
+    assert_eq!(part.execute(&mut NoObserver).unwrap().status, Status::Completed);
+    let csv = parts_dir.join("series.csv");
+    let written = std::fs::read(&csv).unwrap();
+
+    // resumed at its end: the output is left as written, and a checkpoint of it keeps the
+    // progress of the first
+    let mut resumed = Run::resume(&parts_dir.join(CHECKPOINT_FILE), RunOptions::default()).unwrap();
+    assert!(resumed.is_done());
+    assert_eq!(resumed.advance(None, &mut NoObserver).unwrap(), Stop::Reached);
+    assert_eq!(std::fs::read(&csv).unwrap(), written);
+    let again = dir.path().join("again.flexdem");
+    resumed.set_checkpoint_path(&again);
+    resumed.save_checkpoint().unwrap();
+
+    // moved on to step 40: the same files as the uninterrupted run's
+    let mut resumed = Run::resume(&again, RunOptions::default()).unwrap();
+    resumed.set_target(RunLength::Steps(40));
+    let summary = resumed.execute(&mut NoObserver).unwrap();
+    assert_eq!((summary.status, summary.steps_this_run), (Status::Completed, 15));
+    assert_eq!(final_state(&resumed), final_state(&whole));
+    for file in ["series.csv", "flexdem.pvd", "particles_000040.vtp", "contacts_000040.vtp"] {
+        let a = std::fs::read(whole_dir.join(file)).unwrap();
+        let b = std::fs::read(parts_dir.join(file)).unwrap();
+        assert!(a == b, "{file} differs between the uninterrupted and the resumed run");
+    }
+}
+
+#[test]
 fn setup_errors_say_whether_the_input_is_at_fault() {
     let err = Run::from_scene(Path::new("no/such/scene.toml"), RunOptions::default())
         .err()
