@@ -1,7 +1,8 @@
 //! Energy terms of a simulation, the works of a step not yet added to them, and the energy
 //! watch (model.md §3, §4, §7).
 
-use flexdem_geom::Real;
+use flexdem_elements::Dofs;
+use flexdem_geom::{Real, Vec3};
 
 /// Energy terms of a simulation (model.md §6). Works and dissipations are cumulative since the
 /// start; kinetic and elastic terms are the current values.
@@ -168,4 +169,55 @@ pub struct EnergyAccount {
     pub pending: PendingWork,
     /// The balance at the start and the energy scale so far.
     pub watch: EnergyWatch,
+}
+
+/// The translational DOFs, in the order of a vector's components.
+pub(crate) const TRANSLATIONS: [Dofs; 3] = [Dofs::X, Dofs::Y, Dofs::Z];
+
+/// The rotational DOFs, in the order of a vector's components.
+pub(crate) const ROTATIONS: [Dofs; 3] = [Dofs::RX, Dofs::RY, Dofs::RZ];
+
+/// The work a support does when the velocity of its blocked components is changed between
+/// steps (an imposed velocity set or changed): `Σ ½p·(v_c² − v₀_c²)` over the components of
+/// `axes` that `blocked` holds, `p` the mass or the moment of inertia. The leapfrog counts a
+/// blocked component's kinetic energy as `½p·v_c²` (`add_support_terms`), so this closes the
+/// balance at the next step, where it is added to the boundary work (`PendingWork::boundary`).
+/// A component that was free counted `½p·v₀(t − dt/2)·v₀(t + dt/2)`: the change leaves an
+/// error of the order of `F·v·dt`, once.
+pub(crate) fn support_jump(
+    p: Real,
+    old: &Vec3,
+    new: &Vec3,
+    blocked: Dofs,
+    axes: [Dofs; 3],
+) -> Real {
+    (0..3)
+        .filter(|&c| blocked.contains(axes[c]))
+        .map(|c| 0.5 * p * (new[c] * new[c] - old[c] * old[c]))
+        .sum()
+}
+
+/// The particles of `particles` in increasing order, each once (a particle named twice has
+/// its velocity changed once).
+pub(crate) fn distinct(particles: impl IntoIterator<Item = u32>) -> Vec<u32> {
+    let mut ids: Vec<u32> = particles.into_iter().collect();
+    ids.sort_unstable();
+    ids.dedup();
+    ids
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_support_gives_the_kinetic_energy_of_its_blocked_components_only() {
+        let (old, new) = (Vec3::new(1.0, 2.0, 3.0), Vec3::new(-1.0, 0.0, 5.0));
+        let all = support_jump(2.0, &old, &new, Dofs::TRANSLATION, TRANSLATIONS);
+        assert_eq!(all, new.norm_squared() - old.norm_squared());
+        assert_eq!(support_jump(2.0, &old, &new, Dofs::Y, TRANSLATIONS), -4.0);
+        assert_eq!(support_jump(2.0, &old, &new, Dofs::ROTATION, TRANSLATIONS), 0.0);
+        assert_eq!(support_jump(2.0, &old, &new, Dofs::RZ, ROTATIONS), 16.0);
+        assert_eq!(distinct([3, 1, 3, 0]), vec![0, 1, 3]);
+    }
 }

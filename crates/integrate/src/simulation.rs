@@ -4,7 +4,7 @@
 
 use crate::collider::Collider;
 use crate::contact::Contact;
-use crate::energy::{Energy, EnergyWatch};
+use crate::energy::{distinct, support_jump, Energy, EnergyWatch, ROTATIONS, TRANSLATIONS};
 use crate::integrator::kinetic_energy;
 use crate::links::Links;
 use crate::pipeline::{ForceHook, Pipeline};
@@ -205,18 +205,25 @@ impl Simulation {
         self.set_settings(Settings { gravity, ..self.state.settings.clone() })
     }
 
-    /// Sets the velocity of particle `i` (an imposed velocity on blocked DOFs, or a kick on
-    /// free ones, which no work accounts for: the energy watch sees it).
+    /// Sets the velocity of particle `i`: on its blocked DOFs a new imposed velocity, whose
+    /// change of kinetic energy the support gives ([`support_jump`], boundary work); on its
+    /// free ones a kick, which no work accounts for: the energy watch sees it.
     pub fn set_velocity(&mut self, i: u32, velocity: Vec3) -> Result<(), SimulationError> {
         let i = self.particle(i, &velocity, "velocity")?;
-        self.state.model.particles.vel[i] = velocity;
+        let p = &mut self.state.model.particles;
+        let jump = support_jump(p.mass[i], &p.vel[i], &velocity, p.blocked[i], TRANSLATIONS);
+        p.vel[i] = velocity;
+        self.state.energy.pending.boundary += jump;
         Ok(())
     }
 
     /// Sets the angular velocity of particle `i` (rad/s; see [`Simulation::set_velocity`]).
     pub fn set_angular_velocity(&mut self, i: u32, spin: Vec3) -> Result<(), SimulationError> {
         let i = self.particle(i, &spin, "angular velocity")?;
-        self.state.model.particles.ang_vel[i] = spin;
+        let p = &mut self.state.model.particles;
+        let jump = support_jump(p.inertia[i], &p.ang_vel[i], &spin, p.blocked[i], ROTATIONS);
+        p.ang_vel[i] = spin;
+        self.state.energy.pending.boundary += jump;
         Ok(())
     }
 
@@ -331,23 +338,43 @@ impl Simulation {
     }
 
     /// Sets the velocity of each of `particles` and blocks their translations, so that it
-    /// persists (all or nothing, see `Model::impose_velocity`).
+    /// persists (all or nothing, see `Model::impose_velocity`). The support gives the change
+    /// of their kinetic energy, `Σ ½m·(|v|² − |v₀|²)`: boundary work ([`support_jump`]).
     pub fn impose_velocity(
         &mut self,
         particles: impl IntoIterator<Item = ParticleId>,
         velocity: Vec3,
     ) -> Result<(), SimulationError> {
-        Ok(self.state.model.impose_velocity(particles, velocity)?)
+        let ids = distinct(particles);
+        let p = &self.state.model.particles;
+        let jump: Real = ids
+            .iter()
+            .filter_map(|&i| Some((*p.mass.get(i as usize)?, p.vel.get(i as usize)?)))
+            .map(|(m, old)| support_jump(m, old, &velocity, Dofs::TRANSLATION, TRANSLATIONS))
+            .sum();
+        self.state.model.impose_velocity(ids, velocity)?;
+        self.state.energy.pending.boundary += jump;
+        Ok(())
     }
 
     /// Sets the angular velocity of each of `particles` and blocks their rotations, so that
-    /// it persists (all or nothing, see `Model::impose_angular_velocity`).
+    /// it persists (all or nothing, see `Model::impose_angular_velocity`); the support gives
+    /// the change of their kinetic energy, `Σ ½I·(|ω|² − |ω₀|²)` (boundary work).
     pub fn impose_angular_velocity(
         &mut self,
         particles: impl IntoIterator<Item = ParticleId>,
         spin: Vec3,
     ) -> Result<(), SimulationError> {
-        Ok(self.state.model.impose_angular_velocity(particles, spin)?)
+        let ids = distinct(particles);
+        let p = &self.state.model.particles;
+        let jump: Real = ids
+            .iter()
+            .filter_map(|&i| Some((*p.inertia.get(i as usize)?, p.ang_vel.get(i as usize)?)))
+            .map(|(j, old)| support_jump(j, old, &spin, Dofs::ROTATION, ROTATIONS))
+            .sum();
+        self.state.model.impose_angular_velocity(ids, spin)?;
+        self.state.energy.pending.boundary += jump;
+        Ok(())
     }
 
     /// The index of particle `i` if it exists and `value` is finite.
