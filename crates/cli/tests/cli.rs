@@ -98,6 +98,7 @@ fn every_example_runs_a_few_steps_and_writes_its_output_and_summary() {
 
         let json = read_json(&summary);
         assert_eq!(at(&json, "/status"), "completed");
+        assert!(at(&json, "/warnings").is_array(), "{name}");
         assert_eq!(at(&json, "/steps"), 5);
         assert_eq!(at(&json, "/steps_this_run"), 5);
         for key in ["/time", "/dt", "/critical_dt", "/wall_time", "/steps_per_second"] {
@@ -267,6 +268,8 @@ fn an_unstable_run_exits_with_code_1_and_keeps_its_output() {
     let json = read_json(&summary);
     assert_eq!(at(&json, "/status"), "failed");
     assert!(at(&json, "/error").as_str().unwrap().contains("unstable"));
+    let warnings = at(&json, "/warnings").as_array().unwrap();
+    assert!(warnings[0].as_str().unwrap().starts_with("the fixed time step"), "{warnings:?}");
 }
 
 #[test]

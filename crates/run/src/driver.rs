@@ -451,6 +451,7 @@ impl Run {
             scene: self.scene.clone(),
             status,
             error: self.failure.clone(),
+            warnings: self.sim.warnings().to_vec(),
             steps: sim.steps(),
             steps_this_run,
             time: sim.time(),

@@ -37,6 +37,10 @@ pub struct Summary {
     pub status: Status,
     /// The error that stopped a failed run.
     pub error: Option<String>,
+    /// The engine's warnings over the simulation, earlier runs of a resumed one included
+    /// (energy lost that the balance does not count, a fixed dt above the critical step, ...):
+    /// a run with warnings still completes, and its summary says why to look closer.
+    pub warnings: Vec<String>,
     /// Steps done since the start of the simulation (a resumed run counts the earlier ones).
     pub steps: u64,
     /// Steps done by this command.
