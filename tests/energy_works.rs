@@ -220,6 +220,42 @@ fn a_run_that_creates_energy_stops_and_says_where() {
     run(Some(0.9)).unwrap();
 }
 
+/// Energy lost first does not hide energy created later: a sphere stopped by hand (a loss of
+/// its kinetic energy, which the watch warns of), then kicked to 1.02 times the speed it had,
+/// has created its new kinetic energy `E`, measured from the lowest balance plus the limit:
+/// `(E − 0.05·E)/E = 0.95` of the scale, and the run stops at the kick. Measured from the
+/// start the balance is up by 4 % of the energy scale only, below the limit of 5 %, and the
+/// run went on.
+#[test]
+fn energy_lost_first_does_not_hide_energy_created_later() {
+    let mut model = Model::new();
+    let m = material(&mut model);
+    model.add_sphere(Vec3::zeros(), 0.05, m).unwrap();
+    model.particles.vel[0] = Vec3::new(1.0, 0.0, 0.0);
+    let mut sim = Simulation::new(model, fixed(1e-4)).unwrap();
+    sim.run(100).unwrap();
+    sim.set_velocity(0, Vec3::zeros()).unwrap();
+    sim.run(100).unwrap();
+    assert!(sim.warnings().iter().any(|w| w.starts_with("the run lost")), "{:?}", sim.warnings());
+    let lowest = sim.energy_watch().lowest_balance;
+    assert!((lowest - sim.energy_watch().initial_balance) < -0.9 * sim.energy().scale());
+    let from_start = |sim: &Simulation| {
+        (sim.energy().balance() - sim.energy_watch().initial_balance) / sim.energy().scale()
+    };
+    sim.set_velocity(0, Vec3::new(1.02, 0.0, 0.0)).unwrap();
+    match sim.run(100) {
+        Err(SimulationError::EnergyBalance { step, error, change, .. }) => {
+            assert_eq!(step, 201);
+            // the kick's ½m·1.02², less the limit's band, against the scale of the same energy
+            assert!((error - 0.95).abs() < 1e-9, "{error}");
+            assert!(change > 0.0);
+            let up = from_start(&sim);
+            assert!(up > 0.03 && up < 0.05, "{up}");
+        }
+        other => panic!("expected the energy watch to stop the run: {other:?}"),
+    }
+}
+
 /// A fixed dt 1.3 times the critical step: the run becomes unstable, and the energy watch
 /// stops it long before positions blow up.
 #[test]

@@ -136,17 +136,51 @@ pub struct PendingWork {
 }
 
 /// The energy watch (model: "a run watches its energy"): the balance at the start (after the
-/// first step) and the largest energy scale seen, against which the balance error is measured
-/// each step.
+/// first step), its lowest value since, and the largest energy scale seen, against which the
+/// balance error is measured each step.
 #[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct EnergyWatch {
     /// The balance at the start of the simulation (J).
     pub initial_balance: Real,
+    /// The lowest balance since the start (J): once it is below the start by more than the
+    /// tolerance, energy created is measured from it ([`EnergyWatch::reference`]), so that
+    /// energy lost first (which the watch only warns of) does not hide energy created later.
+    pub lowest_balance: Real,
     /// The largest of |initial balance| and [`Energy::scale`] over the run so far (J).
     pub scale: Real,
 }
 
 impl EnergyWatch {
+    /// The watch of a run whose balance starts at `balance`, on the energy scale `scale`.
+    pub fn starting_at(balance: Real, scale: Real) -> EnergyWatch {
+        EnergyWatch { initial_balance: balance, lowest_balance: balance, scale }
+    }
+
+    /// The balance energy created is measured from, on the energy scale `scale` with the
+    /// tolerance `limit`: `min(B(0), min B + limit·scale)`. The balance may swing by the
+    /// tolerance on either side of its start (the lagged kinetic energy of violent first
+    /// steps does); once it has fallen further (energy lost, which the watch warns of), the
+    /// reference follows it down, so that a loss cannot hide energy created later.
+    pub fn reference(&self, limit: Real, scale: Real) -> Real {
+        self.initial_balance.min(self.lowest_balance + limit * scale)
+    }
+
+    /// `(B(t) − reference) / scale` ([`EnergyWatch::reference`]): energy created when above
+    /// `limit`; 0 while the scale is 0.
+    pub fn relative_created(&self, e: &Energy, limit: Real) -> Real {
+        if self.scale > 0.0 {
+            (e.balance() - self.reference(limit, self.scale)) / self.scale
+        } else {
+            0.0
+        }
+    }
+
+    /// Takes in the balance and the energy scale of a step.
+    pub fn note(&mut self, e: &Energy) {
+        self.lowest_balance = self.lowest_balance.min(e.balance());
+        self.scale = self.scale.max(e.scale());
+    }
+
     /// `(B(t) − B(0)) / scale`: positive when energy appeared from nowhere, negative when it
     /// went unaccounted; 0 while the scale is 0.
     pub fn relative_error(&self, e: &Energy) -> Real {

@@ -111,11 +111,13 @@ pub enum SimulationError {
         step: u64,
         /// The time.
         time: Real,
-        /// (B(t) − B(0)) / scale.
+        /// (B(t) − B_ref) / scale: the rise of the balance above its reference, B(0) or,
+        /// once energy was lost beyond the limit, the lowest balance plus the limit
+        /// (`EnergyWatch::reference`).
         error: Real,
         /// The limit it passed.
         limit: Real,
-        /// B(t) − B(0) (J).
+        /// B(t) − B_ref (J).
         change: Real,
         /// The energy scale (J).
         scale: Real,

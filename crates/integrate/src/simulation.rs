@@ -52,10 +52,8 @@ impl Simulation {
         let e = &mut sim.state.energy;
         e.terms.kinetic_translation = kt;
         e.terms.kinetic_rotation = kr;
-        e.watch = EnergyWatch {
-            initial_balance: e.terms.balance(),
-            scale: e.terms.balance().abs().max(e.terms.scale()),
-        };
+        let balance = e.terms.balance();
+        e.watch = EnergyWatch::starting_at(balance, balance.abs().max(e.terms.scale()));
         Ok(sim)
     }
 

@@ -411,13 +411,15 @@ impl Simulation {
             damping: work.damping_next,
             contact_damping: work.contact_damping_next,
         };
+        let watch = &mut self.state.energy.watch;
         if self.state.clock.steps == 1 {
             // the reference of the watch is the balance after the first step: the first kick's
             // damping and the lag of the first step's works make an O(dt²) offset at the start
             // that is large next to the energy of a run that starts from rest
-            self.state.energy.watch.initial_balance = e.balance();
+            watch.initial_balance = e.balance();
+            watch.lowest_balance = e.balance();
         }
-        self.state.energy.watch.scale = self.state.energy.watch.scale.max(e.scale());
+        watch.note(e);
     }
 
     /// Power of the imposed loads, the pressures and the hook, `Σ (F·v + τ·ω)` with the
@@ -432,12 +434,13 @@ impl Simulation {
         forces + torques
     }
 
-    /// Stops the run when the energy balance error passes `settings.energy_tolerance`
-    /// (relative to the energy scale) on the side of energy created, naming the step, the
-    /// time and where the energy is. An energy term that is NaN or infinite stops the run
-    /// whether the watch is on or not (a NaN error compares false with any limit: it must
-    /// not pass for a closed balance, nor be written as output). Energy lost beyond the limit (dissipation the balance
-    /// does not count) raises a warning, once.
+    /// Stops the run when the energy balance rises by more than `settings.energy_tolerance`
+    /// (relative to the energy scale) above its reference (energy created; `B(0)`, or below
+    /// it once energy was lost beyond the limit: [`EnergyWatch::reference`]), naming the
+    /// step, the time and where the energy is. An energy term that is NaN or infinite stops
+    /// the run whether the watch is on or not (a NaN error compares false with any limit: it
+    /// must not pass for a closed balance, nor be written as output). Energy lost beyond the
+    /// limit since the start (dissipation the balance does not count) raises a warning, once.
     fn watch_energy(&mut self) -> Result<(), SimulationError> {
         if let Some((term, value)) = self.state.energy.terms.first_non_finite() {
             return Err(SimulationError::NonFiniteEnergy {
@@ -449,21 +452,23 @@ impl Simulation {
             });
         }
         let Some(limit) = self.state.settings.energy_tolerance else { return Ok(()) };
-        let error = self.state.energy.watch.relative_error(&self.state.energy.terms);
-        if error.abs() <= limit {
+        let (watch, terms) = (&self.state.energy.watch, &self.state.energy.terms);
+        let (error, created) = (watch.relative_error(terms), watch.relative_created(terms, limit));
+        if error >= -limit && created <= limit {
             return Ok(());
         }
-        let change = self.state.energy.terms.balance() - self.state.energy.watch.initial_balance;
         // an energy scale below the round-off of the motions a step resolves is noise (spheres
         // that touch exactly hold contacts of 1e-12 N and 1e-28 J): measured against that
         // floor instead, such a run goes on
         let floor = round_off_energy(&self.state.model.particles, self.state.clock.dt);
-        let scale = self.state.energy.watch.scale.max(floor);
-        let error = change / scale;
-        if error.abs() <= limit {
+        let scale = watch.scale.max(floor);
+        let change = terms.balance() - watch.initial_balance;
+        let risen = terms.balance() - watch.reference(limit, scale);
+        let (error, created) = (change / scale, risen / scale);
+        if error >= -limit && created <= limit {
             return Ok(());
         }
-        if error < 0.0 {
+        if created <= limit {
             if !self.state.warnings.iter().any(|w| w.starts_with(ENERGY_LOST_WARNING)) {
                 self.state.warnings.push(format!(
                     "{ENERGY_LOST_WARNING} {change:+.4e} J ({error:+.3e} of the energy scale \
@@ -479,9 +484,9 @@ impl Simulation {
         Err(SimulationError::EnergyBalance {
             step: self.state.clock.steps,
             time: self.state.clock.time,
-            error,
+            error: created,
             limit,
-            change,
+            change: risen,
             scale,
             culprit: describe(&self.state, &self.pipeline.contacts.pairs),
         })

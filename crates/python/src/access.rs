@@ -168,8 +168,8 @@ pub(crate) fn links(sim: &Simulation) -> LinkTable {
 }
 
 /// Every energy term by name (the fields of `flexdem_integrate::Energy`, as in the summary),
-/// then `stored`, `put_in`, `taken_out`, `balance`, `initial_balance`, `scale` and
-/// `relative_balance_error`.
+/// then `stored`, `put_in`, `taken_out`, `balance`, `initial_balance`, `lowest_balance` (energy
+/// created is measured from it), `scale` and `relative_balance_error`.
 pub(crate) fn energy(sim: &Simulation) -> Vec<(String, Real)> {
     let e = sim.energy();
     let mut terms: Vec<(String, Real)> = match serde_json::to_value(e) {
@@ -185,6 +185,7 @@ pub(crate) fn energy(sim: &Simulation) -> Vec<(String, Real)> {
         ("taken_out".to_string(), e.taken_out()),
         ("balance".to_string(), e.balance()),
         ("initial_balance".to_string(), watch.initial_balance),
+        ("lowest_balance".to_string(), watch.lowest_balance),
         ("scale".to_string(), watch.scale),
         ("relative_balance_error".to_string(), sim.relative_balance_error()),
     ]);
@@ -314,6 +315,6 @@ mod tests {
         let e = energy(&sim);
         let names: Vec<&str> = e.iter().map(|(k, _)| k.as_str()).collect();
         assert!(names.contains(&"elastic_links") && names.contains(&"balance"));
-        assert_eq!(names.len(), 13 + 7);
+        assert_eq!(names.len(), 13 + 8);
     }
 }
