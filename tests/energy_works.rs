@@ -243,7 +243,10 @@ fn energy_lost_first_does_not_hide_energy_created_later() {
         (sim.energy().balance() - sim.energy_watch().initial_balance) / sim.energy().scale()
     };
     sim.set_velocity(0, Vec3::new(1.02, 0.0, 0.0)).unwrap();
-    match sim.run(100) {
+    let result = sim.run(100);
+    let message = result.as_ref().map(|_| ()).unwrap_err().to_string();
+    assert!(message.contains("lowest value plus the limit (after a loss)"), "{message}");
+    match result {
         Err(SimulationError::EnergyBalance { step, error, change, .. }) => {
             assert_eq!(step, 201);
             // the kick's ½m·1.02², less the limit's band, against the scale of the same energy

@@ -160,19 +160,30 @@ impl EnergyWatch {
     /// tolerance `limit`: `min(B(0), min B + limit·scale)`. The balance may swing by the
     /// tolerance on either side of its start (the lagged kinetic energy of violent first
     /// steps does); once it has fallen further (energy lost, which the watch warns of), the
-    /// reference follows it down, so that a loss cannot hide energy created later.
+    /// reference follows it down, so that a loss cannot hide energy created later: a rise of
+    /// more than twice the tolerance above the lowest balance is then energy created, even
+    /// one that only brings the balance back to its start.
     pub fn reference(&self, limit: Real, scale: Real) -> Real {
         self.initial_balance.min(self.lowest_balance + limit * scale)
     }
 
     /// `(B(t) − reference) / scale` ([`EnergyWatch::reference`]): energy created when above
-    /// `limit`; 0 while the scale is 0.
+    /// `limit`; 0 while the scale is 0. (The watch measures a tiny scale against the
+    /// round-off of the motions instead, `round_off_energy`: this does not.)
     pub fn relative_created(&self, e: &Energy, limit: Real) -> Real {
         if self.scale > 0.0 {
             (e.balance() - self.reference(limit, self.scale)) / self.scale
         } else {
             0.0
         }
+    }
+
+    /// Whether the watch holds usable numbers (a state read from a file may be damaged):
+    /// finite, a scale ≥ 0 and the lowest balance not above the start's.
+    pub(crate) fn is_consistent(&self) -> bool {
+        [self.initial_balance, self.lowest_balance, self.scale].iter().all(|x| x.is_finite())
+            && self.scale >= 0.0
+            && self.lowest_balance <= self.initial_balance
     }
 
     /// Takes in the balance and the energy scale of a step.

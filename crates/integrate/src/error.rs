@@ -101,10 +101,12 @@ pub enum SimulationError {
     /// energy it cannot account for.
     #[error(
         "the energy balance is off by {error:+.3e} of the energy scale {scale:.4e} J \
-         ({change:+.4e} J) at step {step} (t = {time:.6e} s), beyond the limit {limit:.1e}: \
+         ({change:+.4e} J) {} at step {step} (t = {time:.6e} s), beyond the limit \
+         {limit:.1e}: \
          the run created energy it cannot account for. {culprit}. Use a smaller time step \
          (dt = auto with a smaller safety factor), or widen the check with \
-         `energy_tolerance` in [simulation] (\"off\" switches it off)"
+         `energy_tolerance` in [simulation] (\"off\" switches it off)",
+        reference_text(.after_loss)
     )]
     EnergyBalance {
         /// The step.
@@ -112,9 +114,12 @@ pub enum SimulationError {
         /// The time.
         time: Real,
         /// (B(t) − B_ref) / scale: the rise of the balance above its reference, B(0) or,
-        /// once energy was lost beyond the limit, the lowest balance plus the limit
+        /// once energy was lost beyond the limit, the lowest balance plus limit·scale
         /// (`EnergyWatch::reference`).
         error: Real,
+        /// Whether the reference is the lowest balance plus the limit (energy was lost beyond
+        /// the limit before) rather than B(0).
+        after_loss: bool,
         /// The limit it passed.
         limit: Real,
         /// B(t) − B_ref (J).
@@ -125,4 +130,13 @@ pub enum SimulationError {
         /// the fastest particle.
         culprit: String,
     },
+}
+
+/// How the energy balance error names its reference (`EnergyBalance::after_loss`).
+fn reference_text(after_loss: &bool) -> &'static str {
+    if *after_loss {
+        "above its lowest value plus the limit (after a loss)"
+    } else {
+        "since the start"
+    }
 }

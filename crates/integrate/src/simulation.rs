@@ -406,7 +406,9 @@ impl Simulation {
     /// controls of walls removed from the end go. A model that fails the checks is
     /// put back as it was; an error of the time step estimate (no stiffness anywhere) comes
     /// after the change. A model whose PFacets no longer fit the pressures is put back too.
-    /// Costs a copy of the model: for velocities, positions and walls use the setters.
+    /// Costs a copy of the model: for velocities, positions and walls use the setters (an
+    /// imposed velocity changed here is not booked as the support's work, as
+    /// [`Simulation::impose_velocity`] books it).
     pub fn edit_model<R>(
         &mut self,
         edit: impl FnOnce(&mut Model) -> R,

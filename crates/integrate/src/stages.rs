@@ -463,7 +463,8 @@ impl Simulation {
         let floor = round_off_energy(&self.state.model.particles, self.state.clock.dt);
         let scale = watch.scale.max(floor);
         let change = terms.balance() - watch.initial_balance;
-        let risen = terms.balance() - watch.reference(limit, scale);
+        let reference = watch.reference(limit, scale);
+        let risen = terms.balance() - reference;
         let (error, created) = (change / scale, risen / scale);
         if error >= -limit && created <= limit {
             return Ok(());
@@ -485,6 +486,7 @@ impl Simulation {
             step: self.state.clock.steps,
             time: self.state.clock.time,
             error: created,
+            after_loss: reference < watch.initial_balance,
             limit,
             change: risen,
             scale,

@@ -128,6 +128,7 @@ impl State {
             && self.contacts.pairs.fits(n, self.model.walls.len())
             && c.dt > 0.0
             && c.dt.is_finite()
+            && self.energy.watch.is_consistent()
             && c.previous_dt >= 0.0
             && c.previous_dt.is_finite()
             && c.time.is_finite()

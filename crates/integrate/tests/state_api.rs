@@ -69,6 +69,15 @@ fn a_state_that_does_not_fit_its_model_is_refused() {
     s.links.nodes[1] = [0, 3];
     let err = Simulation::from_state(s).map(|_| ()).unwrap_err().to_string();
     assert!(err.contains("inconsistent parts"), "{err}");
+    // an energy watch that would stop every step (a lowest balance of −∞) or never (NaN)
+    for lowest in [Real::NEG_INFINITY, Real::NAN, sim.energy_watch().initial_balance + 1.0] {
+        let mut s = sim.state().clone();
+        s.energy.watch.lowest_balance = lowest;
+        assert!(Simulation::from_state(s).is_err(), "{lowest}");
+    }
+    let mut s = sim.state().clone();
+    s.energy.watch.scale = -1.0;
+    assert!(Simulation::from_state(s).is_err());
 }
 
 #[test]

@@ -142,7 +142,12 @@ pub struct EnergySummary {
     /// The energy scale the error is measured against: the largest of the initial balance,
     /// the stored energy, the works and the energy taken out, over the whole run.
     pub scale: f64,
-    /// (balance − initial balance) / scale: what the engine's energy watch checks.
+    /// The lowest balance since the start: once it is below the start by more than the
+    /// tolerance, the watch measures energy created from it (plus the tolerance).
+    pub lowest_balance: f64,
+    /// (balance − initial balance) / scale: the drift since the start (the energy watch
+    /// stops a run when it passes the tolerance, or when the balance rises by more than twice
+    /// the tolerance above its lowest after a loss: docs/model.md §4).
     pub relative_balance_error: f64,
     /// First touches found with more overlap than one step of approach explains (their
     /// energy is `contact_births`).
@@ -198,6 +203,7 @@ impl EnergySummary {
             stored: e.stored(),
             balance: e.balance(),
             initial_balance: watch.initial_balance,
+            lowest_balance: watch.lowest_balance,
             scale: watch.scale,
             relative_balance_error: sim.relative_balance_error(),
             contacts_born_deep: sim.contacts_born_deep(),
