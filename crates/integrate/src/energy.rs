@@ -242,6 +242,23 @@ pub(crate) fn support_jump(
         .sum()
 }
 
+/// [`support_jump`] summed over the particles `ids` (each once) when all of `axes` get the
+/// imposed `new` value: `p` their masses or moments of inertia, `old` their velocities or
+/// spins. An id past the arrays adds nothing (the model refuses it).
+pub(crate) fn imposed_jump(
+    ids: &[u32],
+    p: &[Real],
+    old: &[Vec3],
+    new: &Vec3,
+    axes: [Dofs; 3],
+) -> Real {
+    let all = axes.into_iter().fold(Dofs::NONE, |d, a| d | a);
+    ids.iter()
+        .filter_map(|&i| Some((*p.get(i as usize)?, old.get(i as usize)?)))
+        .map(|(p, old)| support_jump(p, old, new, all, axes))
+        .sum()
+}
+
 /// The particles of `particles` in increasing order, each once (a particle named twice has
 /// its velocity changed once).
 pub(crate) fn distinct(particles: impl IntoIterator<Item = u32>) -> Vec<u32> {
@@ -264,5 +281,9 @@ mod tests {
         assert_eq!(support_jump(2.0, &old, &new, Dofs::ROTATION, TRANSLATIONS), 0.0);
         assert_eq!(support_jump(2.0, &old, &new, Dofs::RZ, ROTATIONS), 16.0);
         assert_eq!(distinct([3, 1, 3, 0]), vec![0, 1, 3]);
+        // every component imposed, summed over the particles; an id past the arrays adds 0
+        let (p, v) = ([2.0, 4.0], [old, Vec3::zeros()]);
+        let jump = imposed_jump(&[0, 1, 7], &p, &v, &new, TRANSLATIONS);
+        assert_eq!(jump, all + 2.0 * new.norm_squared());
     }
 }

@@ -4,7 +4,9 @@
 
 use crate::collider::Collider;
 use crate::contact::Contact;
-use crate::energy::{distinct, support_jump, Energy, EnergyWatch, ROTATIONS, TRANSLATIONS};
+use crate::energy::{
+    distinct, imposed_jump, support_jump, Energy, EnergyWatch, ROTATIONS, TRANSLATIONS,
+};
 use crate::integrator::kinetic_energy;
 use crate::links::Links;
 use crate::pipeline::{ForceHook, Pipeline};
@@ -345,11 +347,7 @@ impl Simulation {
     ) -> Result<(), SimulationError> {
         let ids = distinct(particles);
         let p = &self.state.model.particles;
-        let jump: Real = ids
-            .iter()
-            .filter_map(|&i| Some((*p.mass.get(i as usize)?, p.vel.get(i as usize)?)))
-            .map(|(m, old)| support_jump(m, old, &velocity, Dofs::TRANSLATION, TRANSLATIONS))
-            .sum();
+        let jump = imposed_jump(&ids, &p.mass, &p.vel, &velocity, TRANSLATIONS);
         self.state.model.impose_velocity(ids, velocity)?;
         self.state.energy.pending.boundary += jump;
         Ok(())
@@ -365,11 +363,7 @@ impl Simulation {
     ) -> Result<(), SimulationError> {
         let ids = distinct(particles);
         let p = &self.state.model.particles;
-        let jump: Real = ids
-            .iter()
-            .filter_map(|&i| Some((*p.inertia.get(i as usize)?, p.ang_vel.get(i as usize)?)))
-            .map(|(j, old)| support_jump(j, old, &spin, Dofs::ROTATION, ROTATIONS))
-            .sum();
+        let jump = imposed_jump(&ids, &p.inertia, &p.ang_vel, &spin, ROTATIONS);
         self.state.model.impose_angular_velocity(ids, spin)?;
         self.state.energy.pending.boundary += jump;
         Ok(())

@@ -103,7 +103,8 @@ impl State {
         if !self.is_consistent() {
             return Err(SimulationError::Setting {
                 what: "simulation state".into(),
-                value: "inconsistent parts (links, contacts or loads do not match the model)"
+                value: "inconsistent parts (links, contacts or loads do not match the model, \
+                        or the energy watch holds unusable numbers)"
                     .into(),
                 expected: "a state written by Simulation::state".into(),
             });

@@ -45,6 +45,16 @@ impl RunObserver for Counter {
     }
 }
 
+/// The output of a resumed run of 40 steps is the uninterrupted run's, byte for byte: the
+/// series, the `.pvd` and the last frame.
+fn assert_same_output(whole_dir: &Path, parts_dir: &Path) {
+    for file in ["series.csv", "flexdem.pvd", "particles_000040.vtp", "contacts_000040.vtp"] {
+        let a = std::fs::read(whole_dir.join(file)).unwrap();
+        let b = std::fs::read(parts_dir.join(file)).unwrap();
+        assert!(a == b, "{file} differs between the uninterrupted and the resumed run");
+    }
+}
+
 /// The state a run ends in, bit for bit: positions, velocities and energy terms.
 fn final_state(run: &Run) -> Vec<u64> {
     let sim = run.sim();
@@ -123,11 +133,7 @@ fn an_interrupted_run_resumes_to_the_same_end_as_an_uninterrupted_one() {
     let summary = resumed.execute(&mut NoObserver).unwrap();
     assert_eq!((summary.status, summary.steps_this_run), (Status::Completed, 25));
     assert_eq!(final_state(&resumed), final_state(&whole));
-    for file in ["series.csv", "flexdem.pvd", "particles_000040.vtp", "contacts_000040.vtp"] {
-        let a = std::fs::read(whole_dir.join(file)).unwrap();
-        let b = std::fs::read(parts_dir.join(file)).unwrap();
-        assert!(a == b, "{file} differs between the uninterrupted and the resumed run");
-    }
+    assert_same_output(&whole_dir, &parts_dir);
 }
 
 #[test]
@@ -167,11 +173,7 @@ fn a_run_resumed_at_its_end_continues_its_output_once_moved_on() {
     let summary = resumed.execute(&mut NoObserver).unwrap();
     assert_eq!((summary.status, summary.steps_this_run), (Status::Completed, 15));
     assert_eq!(final_state(&resumed), final_state(&whole));
-    for file in ["series.csv", "flexdem.pvd", "particles_000040.vtp", "contacts_000040.vtp"] {
-        let a = std::fs::read(whole_dir.join(file)).unwrap();
-        let b = std::fs::read(parts_dir.join(file)).unwrap();
-        assert!(a == b, "{file} differs between the uninterrupted and the resumed run");
-    }
+    assert_same_output(&whole_dir, &parts_dir);
 }
 
 #[test]
