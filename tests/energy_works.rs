@@ -280,3 +280,61 @@ fn an_unstable_run_is_stopped_by_its_energy_first() {
         sim.steps()
     );
 }
+
+/// Two spheres (radius R, at rest, kn = E·R by eq 3) and one moved by hand δ into the other.
+fn moved_into_each_other(settings: Settings, r: Real, delta: Real) -> (Simulation, Real) {
+    let mut model = Model::new();
+    let m = material(&mut model);
+    model.add_sphere(Vec3::zeros(), r, m).unwrap();
+    model.add_sphere(Vec3::new(3.0 * r, 0.0, 0.0), r, m).unwrap();
+    let mut sim = Simulation::new(model, settings).unwrap();
+    sim.run(10).unwrap();
+    sim.set_position(1, Vec3::new(2.0 * r - delta, 0.0, 0.0)).unwrap();
+    // found late: its overlap one step before is δ (no approach explains it), and its spring
+    // starts with ½·kn·δ·δ₋ = ½·kn·δ², which the balance counts in `contact_births`
+    (sim, 0.5 * (1e7 * r) * delta * delta)
+}
+
+/// A contact found late puts energy into the run that no work gave: the balance counts it,
+/// so the balance error cannot see it, and the watch stops the run on it, naming it.
+#[test]
+fn a_sphere_moved_into_another_stops_the_run_on_the_energy_its_contact_puts_in() {
+    let (r, delta) = (0.05, 1e-3);
+    let (mut sim, expected) = moved_into_each_other(fixed(1e-5), r, delta);
+    let err = sim.step().unwrap_err();
+    let message = err.to_string();
+    let SimulationError::LateContacts { energy, contacts, step, scale, .. } = err else {
+        panic!("{message}")
+    };
+    assert!((energy - expected).abs() < 1e-9 * expected, "{energy} against {expected}");
+    assert_eq!((contacts, step), (1, 11));
+    assert!(energy / scale > 0.5, "{scale}: the contact holds most of the energy");
+    assert!((sim.energy().contact_births - expected).abs() < 1e-9 * expected);
+    assert!(message.contains("contacts found late have put"), "{message}");
+    // the balance itself closes: the error alone would have let the run go on
+    assert!(sim.relative_balance_error().abs() < 1e-6, "{}", sim.relative_balance_error());
+
+    // with the watch off the run goes on, and the energy is still summed
+    let off = Settings { energy_tolerance: None, ..fixed(1e-5) };
+    let (mut sim, expected) = moved_into_each_other(off, r, delta);
+    sim.run(100).unwrap();
+    let late = sim.energy_watch().late_births;
+    assert!((late - expected).abs() < 1e-9 * expected, "{late} against {expected}");
+}
+
+/// Overlaps at the start (a heap built with overlaps) are the start state, not contacts found
+/// late: the same two spheres made overlapping run on, and nothing is summed.
+#[test]
+fn overlaps_at_the_start_are_not_contacts_found_late() {
+    let (r, delta) = (0.05, 1e-3);
+    let mut model = Model::new();
+    let m = material(&mut model);
+    model.add_sphere(Vec3::zeros(), r, m).unwrap();
+    model.add_sphere(Vec3::new(2.0 * r - delta, 0.0, 0.0), r, m).unwrap();
+    let mut sim = Simulation::new(model, fixed(1e-5)).unwrap();
+    sim.run(2000).unwrap();
+    assert_eq!(sim.contacts_born_deep(), 1);
+    assert_eq!(sim.energy_watch().late_births, 0.0);
+    assert!(sim.contacts().is_empty(), "they flew apart");
+    assert!(sim.relative_balance_error().abs() < 1e-3, "{}", sim.relative_balance_error());
+}

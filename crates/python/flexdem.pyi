@@ -209,7 +209,9 @@ class Simulation:
         normal_force (m, compression positive), shear_force and force (m×3, on node 2)."""
     def energy(self) -> dict[str, float]:
         """Every energy term (J), then stored, put_in, taken_out, balance,
-        initial_balance, lowest_balance, scale and relative_balance_error."""
+        initial_balance, lowest_balance, scale, relative_balance_error and late_births
+        (what contacts found late put in after the first step; the energy watch stops a
+        run when it passes the tolerance times the scale)."""
     def series(self) -> dict[str, npt.NDArray[Any]]:
         """The tracked series, one array per column of series.csv: time_s, step (int64),
         then NAME_COMPONENT_UNIT columns; recorded whether or not output is written."""

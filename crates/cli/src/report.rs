@@ -128,6 +128,11 @@ pub fn text(summary: &Summary) -> String {
         e.scale,
         match e.contacts_born_deep {
             0 => String::new(),
+            n if e.late_contacts_energy > 0.0 => format!(
+                "; {} found late, those after the first step putting in {:.3e} J",
+                plural(n as usize, "contact"),
+                e.late_contacts_energy
+            ),
             n => format!("; {} found late", plural(n as usize, "contact")),
         }
     );

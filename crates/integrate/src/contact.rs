@@ -56,6 +56,9 @@ pub(crate) struct BirthReport {
     /// Energy put in by contacts that started or ended within the step before (J): see
     /// [`ContactPipeline::settle_births`]; positive for contacts found late.
     pub born_energy: Real,
+    /// The part of `born_energy` put in by the first touches found late (`born_deep`):
+    /// `½·kn·δ·δ₋` each, `δ₋ = δ − u·dt₀ > 0` the overlap one step before (J).
+    pub late_energy: Real,
     /// Elastic energy given up by contacts that ended while holding it (J).
     pub released: Real,
 }

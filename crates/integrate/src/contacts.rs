@@ -566,7 +566,10 @@ impl ContactPipeline {
                 contacts.list[n].state.overlap_offset = g.overlap.max(0.0);
                 continue;
             }
-            report.born_energy += birth_jump(&c.params, &c.state, &g, dt);
+            // found late: the energy it puts in is also watched on its own (model.md §4)
+            let jump = birth_jump(&c.params, &c.state, &g, dt);
+            report.born_energy += jump;
+            report.late_energy += jump;
             report.born_deep += 1;
         }
         for &o in ended.iter() {

@@ -136,8 +136,9 @@ pub struct PendingWork {
 }
 
 /// The energy watch (model: "a run watches its energy"): the balance at the start (after the
-/// first step), its lowest value since, and the largest energy scale seen, against which the
-/// balance error is measured each step.
+/// first step), its lowest value since, the largest energy scale seen, against which the
+/// balance error is measured each step, and the energy put in by contacts found late, which
+/// the balance counts (in `contact_births`) and the watch limits on its own.
 #[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct EnergyWatch {
     /// The balance at the start of the simulation (J).
@@ -148,12 +149,31 @@ pub struct EnergyWatch {
     pub lowest_balance: Real,
     /// The largest of |initial balance| and [`Energy::scale`] over the run so far (J).
     pub scale: Real,
+    /// Energy put in since the start (after the first step, whose overlaps are the start
+    /// state) by first touches found with more overlap than one step of approach explains:
+    /// `Σ ½·kn·δ·δ₋` (J, δ₋ = δ − u·dt₀ > 0 the overlap one step before). The balance counts
+    /// it as put in, so the balance error cannot show it: it is energy the run made (bodies
+    /// that passed a step overlapping unseen, or were made or moved into each other), limited
+    /// by the same tolerance ([`EnergyWatch::relative_late_births`]).
+    pub late_births: Real,
+    /// The energy of the normal springs of the contacts a model edit ended
+    /// (`Simulation::edit_model`): found again at the next step, late, they bring it back
+    /// (reborn with no shear), and it is taken off that step's late births (J; 0 once that
+    /// step is done).
+    pub late_credit: Real,
 }
 
 impl EnergyWatch {
     /// The watch of a run whose balance starts at `balance`, on the energy scale `scale`.
     pub fn starting_at(balance: Real, scale: Real) -> EnergyWatch {
-        EnergyWatch { initial_balance: balance, lowest_balance: balance, scale }
+        let (late_births, late_credit) = (0.0, 0.0);
+        EnergyWatch {
+            initial_balance: balance,
+            lowest_balance: balance,
+            scale,
+            late_births,
+            late_credit,
+        }
     }
 
     /// The balance energy created is measured from, on the energy scale `scale` with the
@@ -178,12 +198,32 @@ impl EnergyWatch {
         }
     }
 
+    /// `late_births / scale`, compared with the tolerance; 0 while the scale is 0.
+    pub fn relative_late_births(&self) -> Real {
+        if self.scale > 0.0 {
+            self.late_births / self.scale
+        } else {
+            0.0
+        }
+    }
+
     /// Whether the watch holds usable numbers (a state read from a file may be damaged):
-    /// finite, a scale ≥ 0 and the lowest balance not above the start's.
+    /// finite, a scale, late births and a credit ≥ 0 and the lowest balance not above the
+    /// start's.
     pub(crate) fn is_consistent(&self) -> bool {
-        [self.initial_balance, self.lowest_balance, self.scale].iter().all(|x| x.is_finite())
+        let (b0, lowest, credit) = (self.initial_balance, self.lowest_balance, self.late_credit);
+        [b0, lowest, self.scale, self.late_births, credit].iter().all(|x| x.is_finite())
             && self.scale >= 0.0
+            && self.late_births >= 0.0
+            && credit >= 0.0
             && self.lowest_balance <= self.initial_balance
+    }
+
+    /// Takes in the energy `late` that contacts found late put in at a step, less what a
+    /// model edit before it released ([`EnergyWatch::late_credit`], then spent).
+    pub(crate) fn note_late_births(&mut self, late: Real) {
+        self.late_births += (late - self.late_credit).max(0.0);
+        self.late_credit = 0.0;
     }
 
     /// Takes in the balance and the energy scale of a step.

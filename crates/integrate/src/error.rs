@@ -130,6 +130,38 @@ pub enum SimulationError {
         /// the fastest particle.
         culprit: String,
     },
+    /// Contacts found late (first touches with more overlap than one step of approach
+    /// explains) put in more energy than the limit allows: the balance counts it
+    /// (`contact_births`), but it is energy the run made, not energy a load or a support
+    /// gave (`EnergyWatch::late_births`).
+    #[error(
+        "contacts found late have put {energy:.4e} J into the run since the start, \
+         {:.3e} of the energy scale {scale:.4e} J, beyond the limit {limit:.1e}, by step \
+         {step} (t = {time:.6e} s; {contacts} first touches found late since the simulation \
+         began, the first step's overlaps included): bodies passed a \
+         step overlapping unseen, or were made or moved into each other, and their springs \
+         started with energy no work gave. {culprit}. Use a smaller time step (dt = auto with \
+         a smaller safety factor) or start the bodies apart, or widen the check with \
+         `energy_tolerance` in [simulation] (\"off\" switches it off)",
+        .energy / .scale
+    )]
+    LateContacts {
+        /// The step.
+        step: u64,
+        /// The time.
+        time: Real,
+        /// The energy they put in since the start (J): `energy / scale` passed `limit`.
+        energy: Real,
+        /// The limit it passed.
+        limit: Real,
+        /// The energy scale (J).
+        scale: Real,
+        /// The first touches found late since the simulation began (the first step's
+        /// overlaps included, whose energy is not counted).
+        contacts: u64,
+        /// Where the energy is (see `EnergyBalance::culprit`).
+        culprit: String,
+    },
 }
 
 /// How the energy balance error names its reference (`EnergyBalance::after_loss`).

@@ -14,6 +14,8 @@ pub(crate) struct ChunkSums {
     pub(crate) born_energy: Real,
     pub(crate) released: Real,
     pub(crate) born_deep: u64,
+    /// The part of `born_energy` of the pairs found late (`born_deep`).
+    pub(crate) late_energy: Real,
     pub(crate) ended_dissipation: Real,
     /// Elastic energy of the touching pairs after their update.
     pub(crate) elastic: Real,
@@ -27,6 +29,7 @@ impl Default for ChunkSums {
             born_energy: 0.0,
             released: 0.0,
             born_deep: 0,
+            late_energy: 0.0,
             ended_dissipation: 0.0,
             elastic: -0.0,
             friction: -0.0,
@@ -39,6 +42,9 @@ impl ChunkSums {
         self.born_energy += o.born_energy;
         self.released += o.released;
         self.born_deep += u64::from(o.born_deep);
+        if o.born_deep {
+            self.late_energy += o.born_energy;
+        }
         self.ended_dissipation += o.ended_dissipation;
     }
 
@@ -55,6 +61,7 @@ impl ChunkSums {
         total.born_energy += self.born_energy;
         total.released += self.released;
         total.born_deep += self.born_deep;
+        total.late_energy += self.late_energy;
         total.ended_dissipation += self.ended_dissipation;
         total.elastic += self.elastic;
         total.friction += self.friction;

@@ -229,6 +229,7 @@ impl PairScratch {
         let report = BirthReport {
             born_deep: total.born_deep,
             born_energy: total.born_energy,
+            late_energy: total.late_energy,
             released: total.released,
         };
         (report, total)

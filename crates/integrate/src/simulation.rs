@@ -16,6 +16,7 @@ use crate::settings::{Load, Settings};
 use crate::state::{check_load, check_pressures, State};
 use crate::timers::Timers;
 use crate::SimulationError;
+use flexdem_contact::spring_energy;
 use flexdem_elements::{Connection, Dofs, Model, PFacet, ParticleId};
 use flexdem_geom::{Real, Vec3};
 use nalgebra::UnitQuaternion;
@@ -229,7 +230,9 @@ impl Simulation {
 
     /// Moves particle `i` to `position` by hand. The collider sees the move at the next step
     /// (it watches every particle's displacement: the leapfrog's watch of the last step no
-    /// longer holds); links and contacts feel it as a deformation.
+    /// longer holds); links and contacts feel it as a deformation. A first touch the move
+    /// makes is found late: its spring's energy is energy the run made, and beyond the
+    /// energy tolerance it stops the run (`SimulationError::LateContacts`).
     pub fn set_position(&mut self, i: u32, position: Vec3) -> Result<(), SimulationError> {
         let i = self.particle(i, &position, "position")?;
         self.state.model.particles.pos[i] = position;
@@ -395,7 +398,11 @@ impl Simulation {
     /// anew at rest in the current configuration: the elastic energy the old ones held goes
     /// to `links_dissipated`), and the time step. When the particles, connections, PFacets or
     /// walls changed, the contacts end (their friction stays counted as dissipated, their
-    /// elastic energy goes to `contact_releases`) and are found again at the next step. The
+    /// elastic energy goes to `contact_releases`) and are found again at the next step, late:
+    /// the energy their normal springs bring back, up to what those held, is not counted
+    /// against the energy watch's limit on contacts found late, but a body added into another
+    /// is, and so is what a contact reborn without its overlap offset gains (it comes back
+    /// with its full force `kn·δ` where it carried `kn·(δ − δ₀)`). The
     /// wall controls are kept by wall index; walls added get [`WallControl::Velocity`], the
     /// controls of walls removed from the end go. A model that fails the checks is
     /// put back as it was; an error of the time step estimate (no stiffness anywhere) comes
@@ -429,8 +436,13 @@ impl Simulation {
             && same_faces(&model.pfacets, &before.pfacets)
             && model.walls.len() == before.walls.len();
         if !same_topology {
-            // contacts ended while holding elastic energy give it up (`contact_releases`)
+            // contacts ended while holding elastic energy give it up (`contact_releases`);
+            // found again at the next step, late, their normal springs bring theirs back
+            // (reborn with no shear), which is not energy the run made (`late_credit`)
             let contacts = &mut self.state.contacts;
+            let ended = contacts.all(&before);
+            let normal = ended.iter().map(|c| spring_energy(c.state.normal_force, c.params.kn));
+            self.state.energy.watch.late_credit += normal.sum::<Real>();
             terms.contact_releases += terms.elastic_contacts;
             terms.elastic_contacts = 0.0;
             contacts.ended_dissipation = contacts.dissipated();

@@ -168,6 +168,8 @@ impl Simulation {
         self.state.energy.terms.contact_births += pairs.born_energy;
         self.state.energy.terms.contact_releases += pairs.released;
         self.state.contacts.born_deep += pairs.born_deep;
+        let late = births.late_energy + pairs.late_energy;
+        self.state.energy.watch.note_late_births(late);
         let appeared = self.state.contacts.len() > before;
         self.account_new_contacts();
         self.pipeline.timers.lap(Stage::Contacts);
@@ -418,6 +420,8 @@ impl Simulation {
             // that is large next to the energy of a run that starts from rest
             watch.initial_balance = e.balance();
             watch.lowest_balance = e.balance();
+            // (the overlaps of the first step are the start state, not contacts found late)
+            watch.late_births = 0.0;
         }
         watch.note(e);
     }
@@ -454,7 +458,7 @@ impl Simulation {
         let Some(limit) = self.state.settings.energy_tolerance else { return Ok(()) };
         let (watch, terms) = (&self.state.energy.watch, &self.state.energy.terms);
         let (error, created) = (watch.relative_error(terms), watch.relative_created(terms, limit));
-        if error >= -limit && created <= limit {
+        if error >= -limit && created <= limit && watch.relative_late_births() <= limit {
             return Ok(());
         }
         // an energy scale below the round-off of the motions a step resolves is noise (spheres
@@ -466,8 +470,20 @@ impl Simulation {
         let reference = watch.reference(limit, scale);
         let risen = terms.balance() - reference;
         let (error, created) = (change / scale, risen / scale);
-        if error >= -limit && created <= limit {
+        let late = watch.late_births / scale;
+        if error >= -limit && created <= limit && late <= limit {
             return Ok(());
+        }
+        if created <= limit && late > limit {
+            return Err(SimulationError::LateContacts {
+                step: self.state.clock.steps,
+                time: self.state.clock.time,
+                energy: watch.late_births,
+                limit,
+                scale,
+                contacts: self.state.contacts.born_deep,
+                culprit: describe(&self.state, &self.pipeline.contacts.pairs),
+            });
         }
         if created <= limit {
             if !self.state.warnings.iter().any(|w| w.starts_with(ENERGY_LOST_WARNING)) {

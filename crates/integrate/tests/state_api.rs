@@ -78,6 +78,15 @@ fn a_state_that_does_not_fit_its_model_is_refused() {
     let mut s = sim.state().clone();
     s.energy.watch.scale = -1.0;
     assert!(Simulation::from_state(s).is_err());
+    // nor one whose sum of contacts found late, or its credit, is NaN or negative
+    for bad in [Real::NAN, -1.0] {
+        let mut s = sim.state().clone();
+        s.energy.watch.late_births = bad;
+        assert!(Simulation::from_state(s).is_err(), "late births {bad}");
+        let mut s = sim.state().clone();
+        s.energy.watch.late_credit = bad;
+        assert!(Simulation::from_state(s).is_err(), "credit {bad}");
+    }
 }
 
 #[test]

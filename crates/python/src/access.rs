@@ -169,7 +169,8 @@ pub(crate) fn links(sim: &Simulation) -> LinkTable {
 
 /// Every energy term by name (the fields of `flexdem_integrate::Energy`, as in the summary),
 /// then `stored`, `put_in`, `taken_out`, `balance`, `initial_balance`, `lowest_balance` (energy
-/// created is measured from it), `scale` and `relative_balance_error`.
+/// created is measured from it), `scale`, `relative_balance_error` and `late_births` (the
+/// energy contacts found late put in, part of `contact_births`, which the watch limits).
 pub(crate) fn energy(sim: &Simulation) -> Vec<(String, Real)> {
     let e = sim.energy();
     let mut terms: Vec<(String, Real)> = match serde_json::to_value(e) {
@@ -188,6 +189,7 @@ pub(crate) fn energy(sim: &Simulation) -> Vec<(String, Real)> {
         ("lowest_balance".to_string(), watch.lowest_balance),
         ("scale".to_string(), watch.scale),
         ("relative_balance_error".to_string(), sim.relative_balance_error()),
+        ("late_births".to_string(), watch.late_births),
     ]);
     terms
 }
@@ -315,6 +317,6 @@ mod tests {
         let e = energy(&sim);
         let names: Vec<&str> = e.iter().map(|(k, _)| k.as_str()).collect();
         assert!(names.contains(&"elastic_links") && names.contains(&"balance"));
-        assert_eq!(names.len(), 13 + 8);
+        assert_eq!(names.len(), 13 + 9);
     }
 }

@@ -430,7 +430,9 @@ impl PySimulation {
     /// The energy terms (J) as a dict: every term of the engine's energy account
     /// (`kinetic_translation`, `elastic_links`, `gravity_work`, `friction`, ...), then
     /// `stored`, `put_in`, `taken_out`, `balance` (constant when the balance closes),
-    /// `initial_balance`, `lowest_balance`, `scale` and `relative_balance_error`.
+    /// `initial_balance`, `lowest_balance`, `scale`, `relative_balance_error` and
+    /// `late_births` (what contacts found late put in after the first step, limited by the
+    /// watch on its own).
     fn energy<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let terms = access::energy(self.lock().run.sim());
         let d = PyDict::new(py);

@@ -78,7 +78,8 @@ def test_energy_terms_and_balance(tube_scene):
     sim = flexdem.Simulation.from_scene(tube_scene)
     e = sim.energy()
     for term in ENERGY_TERMS + ["stored", "put_in", "taken_out", "balance",
-                                "initial_balance", "relative_balance_error"]:
+                                "initial_balance", "relative_balance_error",
+                                "late_births"]:
         assert term in e, term
     # ½·m·v², m = 0.1121 kg, v = 2 m/s
     assert e["kinetic_translation"] == pytest.approx(0.2242, rel=1e-3)

@@ -152,6 +152,9 @@ pub struct EnergySummary {
     /// First touches found with more overlap than one step of approach explains (their
     /// energy is `contact_births`).
     pub contacts_born_deep: u64,
+    /// The energy those found after the first step put in (J, part of `contact_births`):
+    /// the energy watch stops a run when it passes the tolerance times the scale.
+    pub late_contacts_energy: f64,
 }
 
 /// Where the output went.
@@ -207,6 +210,7 @@ impl EnergySummary {
             scale: watch.scale,
             relative_balance_error: sim.relative_balance_error(),
             contacts_born_deep: sim.contacts_born_deep(),
+            late_contacts_energy: watch.late_births,
         }
     }
 }

@@ -39,7 +39,8 @@
 //! springs shared (`Links::springs` once per distinct spring, `Links::spring` per link);
 //! version 12 the free spheres' lean contacts (`PairContact` without the contact point of
 //! its last update, made when asked from the positions); version 13 the energy watch's lowest
-//! balance (`EnergyWatch::lowest_balance`).
+//! balance (`EnergyWatch::lowest_balance`); version 14 the energy contacts found late put in
+//! (`EnergyWatch::late_births`).
 //! Files of older versions are refused with the version error, which says so.
 //!
 //! # Writing
@@ -81,7 +82,7 @@ use std::path::{Path, PathBuf};
 pub const CHECKPOINT_MAGIC: [u8; 8] = *b"FLXDMCKP";
 
 /// The format version this build writes and reads (see the module documentation).
-pub const CHECKPOINT_VERSION: u32 = 13;
+pub const CHECKPOINT_VERSION: u32 = 14;
 
 /// Size of the header before the payload: magic, version, length, checksum (bytes).
 pub const CHECKPOINT_HEADER_LEN: usize = 24;
