@@ -14,6 +14,12 @@ pub const DEFAULT_TOLERANCE: Real = 1e-3;
 /// Default number of minimisation iterations before a dense packing gives up.
 pub const DEFAULT_MAX_ITERATIONS: usize = 20_000;
 
+/// The most `spheres.max_iterations` a dense packing may ask for. FIRE reaches the default
+/// tolerance in 10³–10⁴ iterations; more only makes a packing that cannot reach it take
+/// longer to fail (each iteration visits every sphere and its neighbours), and a typo of a
+/// few zeros would hold the run for days before its error.
+pub const MAX_ITERATIONS: usize = 1_000_000;
+
 impl Builder<'_> {
     /// The spheres of a `kind = "dense"` entry.
     pub(crate) fn dense_spheres(
@@ -42,6 +48,17 @@ impl Builder<'_> {
             .max_iterations
             .as_ref()
             .map_or(Ok(DEFAULT_MAX_ITERATIONS), |m| ctx.count(m, &key("max_iterations"), 1))?;
+        if let Some(m) = sp.max_iterations.as_ref().filter(|_| max_iterations > MAX_ITERATIONS) {
+            return Err(ctx.at(
+                m.span(),
+                &key("max_iterations"),
+                format!(
+                    "is {max_iterations}: expected at most {MAX_ITERATIONS} (FIRE reaches the \
+                     default tolerance in 10³–10⁴ iterations; a packing that has not reached \
+                     it by then needs a lower solid_fraction or a larger tolerance)"
+                ),
+            ));
+        }
         let region = self.packing_region(sp, table.clone(), radius_range.1)?;
         let spec = DensePacking {
             region,

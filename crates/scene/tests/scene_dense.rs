@@ -149,6 +149,12 @@ radius = 0.01
     assert!(e.contains("spheres.cylinder.axis"), "{e}");
     let e = parse(&format!("{base}solid_fraction = 0.6\nfile = \"a.csv\"\n")).unwrap_err();
     assert!(e.contains("does not apply to kind = \"dense\""), "{e}");
+    // a typo of a few zeros: refused before the packing starts (it would run for days)
+    let e = parse(&format!(
+        "{base}solid_fraction = 0.6\nbox = {{ min = [0, 0, 0], max = [1, 1, 1] }}\nmax_iterations = 2000000000\n"
+    ))
+    .unwrap_err();
+    assert!(e.contains("spheres.max_iterations") && e.contains("at most 1000000"), "{e}");
     // radii whose cube underflows: an error, not an overflow (found by the fuzzer)
     let e = parse(
         &format!(
