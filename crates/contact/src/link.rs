@@ -38,8 +38,9 @@
 //! # Energy
 //! Elastic energy Fn²/(2kn) + |Fs|²/(2α·ks) + |Mt|²/(2kt) + |Mb|²/(2kb): in yade mode the shear
 //! spring's effective stiffness is α·ks (the work done on the link is |Fs|·|u̇s|dt, its force
-//! grows by α·ks·|u̇s|dt). Caps dissipate (|F_trial| − |F_cap|)·|F_cap|/k; breakage releases
-//! the elastic energy lost.
+//! grows by α·ks·|u̇s|dt). Caps dissipate (|F_trial| − |F_cap|)·|F_cap|/k. Breakage and a
+//! cohesion loss release what the springs that stop carrying their trial force take out of
+//! the leapfrog's balance, `½·F_t·F₋/k` for one that is gone (`spring_exit`; model.md §3).
 
 use crate::energy::{cap_dissipation, spring_energy, spring_energy_squared, Dissipation};
 use crate::material::{FailureMode, Material};
@@ -264,6 +265,13 @@ struct Trial {
     fn_: Real,
     fs: Vec3,
     ks: Real,
+    /// The shear force of the step before, transported onto the new tangent plane (for the
+    /// springs' exit when the link breaks, [`spring_exit`]).
+    fs_before: Vec3,
+    /// The plastic elongation in `fn_`.
+    elongation: Real,
+    /// The step just done, dt₀ (s).
+    dt: Real,
 }
 
 /// One step of a beam link (eq 1, 2, 5–8; see the module documentation for the kinematics,
@@ -321,11 +329,64 @@ pub fn update_link_parts(
         fn_: k.kn * (spring.rest_length + plastic.elongation - l),
         fs: rotated - us * (ks * dt),
         ks,
+        fs_before: rotated,
+        elongation: plastic.elongation,
+        dt,
     };
     match state.status {
         LinkStatus::Cohesive => cohesive_step(class, spring, state, plastic, kin, &trial),
-        _ => frictional_step(class, spring, state, &trial, 0.0, false),
+        _ => frictional_step(class, spring, state, kin, &trial, None),
     }
+}
+
+/// What a spring of a link takes out of the energy balance at the step where it stops
+/// carrying the force its trial asks (it breaks, or is capped by the friction of a link that
+/// lost its cohesion): `½·F_t·F₋/k + ½·F_a·(F_t − F₋)/k − ½·|F_a|²/k`, with `F_t` its trial
+/// force at t, `F₋` its force one step before (transported), `F_a` the force it carries on
+/// (0 when it is gone) and `k` its stiffness (forces and moments alike). The leapfrog's
+/// balance, with the kinetic energy ½m·v(t − dt₀/2)·v(t + dt/2), is exact for a linear
+/// spring present at both ends of a step; this is the jump when its force at t is `F_a`
+/// instead of `F_t`: for a spring that is gone, `½k·x₋·x_t`. (The trial energy `½k·x_t²`
+/// was booked before: a bias of `½k·x_t·(x_t − x₋)` towards energy lost at each break.)
+#[inline]
+fn spring_exit(trial: Vec3, before: Vec3, applied: Vec3, k: Real) -> Real {
+    if !(k > 0.0) {
+        return 0.0;
+    }
+    (0.5 * trial.dot(&before) + 0.5 * applied.dot(&(trial - before)) - 0.5 * applied.norm_squared())
+        / k
+}
+
+/// The normal force of the step before (`kn·(L0 + e_p − L₋)`), from the nodes moved back
+/// along their velocities: `x₋ = x − v·dt₀` (the leapfrog moved them by `v·dt₀`).
+fn normal_force_before(spring: &LinkSpring, t: &Trial, kin: &LinkKinematics) -> Real {
+    let d = (kin.x2 - kin.v2 * t.dt) - (kin.x1 - kin.v1 * t.dt);
+    spring.stiffness.kn * (spring.rest_length + t.elongation - d.norm())
+}
+
+/// The twisting and bending moments (on node 2) of the step before, split about the
+/// current normal, from the nodes turned back by their spins (`q₋ = rot(−ω·dt₀)·q`).
+fn moments_before(
+    spring: &LinkSpring,
+    s: &LinkState,
+    plastic: &LinkPlastic,
+    kin: &LinkKinematics,
+    t: &Trial,
+) -> (Vec3, Vec3) {
+    let k = &spring.stiffness;
+    let back = |q: &UnitQuaternion<Real>, w: &Vec3| UnitQuaternion::from_scaled_axis(-w * t.dt) * q;
+    let (q1, q2) = (back(&kin.q1, &kin.w1), back(&kin.q2, &kin.w2));
+    let el = rotation_vector(&(q2 * s.rest_rotation * q1.inverse())) - q1 * plastic.rotation;
+    let tw = t.n * t.n.dot(&el);
+    (tw * -k.kt, (el - tw) * -k.kb)
+}
+
+/// [`spring_exit`] of a link's normal and shear springs when both are gone.
+fn normal_and_shear_exit(spring: &LinkSpring, kin: &LinkKinematics, t: &Trial) -> Real {
+    let (x, z) = (Vec3::x(), Vec3::zeros());
+    let before = normal_force_before(spring, t, kin);
+    spring_exit(x * t.fn_, x * before, z, spring.stiffness.kn)
+        + spring_exit(t.fs, t.fs_before, z, t.ks)
 }
 
 /// The elastic energy of a link after an update, from what an engine keeps of it: its normal
@@ -397,9 +458,10 @@ fn cohesive_step(
     if let Some(tmax) = lim.tensile_force {
         if -t.fn_ > tmax {
             if fragile {
+                let moments = moments_exit(p, spring, s, plastic, kin, t, (&mt, &mb));
                 s.status = LinkStatus::Broken;
                 s.shear_force = Vec3::zeros();
-                diss.breakage = e_trial;
+                diss.breakage = normal_and_shear_exit(spring, kin, t) + moments;
                 return LinkForces {
                     dissipated: diss,
                     event: LinkEvent::BrokeInTension,
@@ -417,8 +479,9 @@ fn cohesive_step(
     let twist_cap = lim.twist_moment.filter(|&c| p.moments && exceeds(mt2, c));
     let bend_cap = lim.bending_moment.filter(|&c| p.moments && exceeds(mb2, c));
     if fragile && (shear_cap.is_some() || twist_cap.is_some() || bend_cap.is_some()) {
+        let moments = moments_exit(p, spring, s, plastic, kin, t, (&mt, &mb));
         s.status = LinkStatus::Frictional;
-        return frictional_step(p, spring, s, t, e_trial, true);
+        return frictional_step(p, spring, s, kin, t, Some(moments));
     }
     let mut fs = t.fs;
     if let Some(c) = shear_cap {
@@ -454,17 +517,37 @@ fn cohesive_step(
     assemble(n, t.l, fn_, fs, mt, mb, elastic, diss, LinkEvent::None)
 }
 
+/// [`spring_exit`] of a cohesive link's moments when they are gone (its trial moments `m`,
+/// twist and bending on node 2); 0 without moments.
+fn moments_exit(
+    p: &LinkClass,
+    spring: &LinkSpring,
+    s: &LinkState,
+    plastic: &LinkPlastic,
+    kin: &LinkKinematics,
+    t: &Trial,
+    m: (&Vec3, &Vec3),
+) -> Real {
+    if !p.moments {
+        return 0.0;
+    }
+    let (twist, bending) = moments_before(spring, s, plastic, kin, t);
+    let (k, z) = (&spring.stiffness, Vec3::zeros());
+    spring_exit(*m.0, twist, z, k.kt) + spring_exit(*m.1, bending, z, k.kb)
+}
+
 /// A link without cohesion: compression-only spring with Coulomb friction, no moments; broken
-/// when in tension. `losing` marks the step in which cohesion is lost (the energy released then,
-/// `e_trial` minus what remains, is counted as breakage rather than friction).
+/// when in tension. `losing` is given in the step in which cohesion is lost, with the exit of
+/// the moments ([`moments_exit`]): the energy released then, what the springs take out of
+/// the balance ([`spring_exit`]), is counted as breakage rather than friction.
 #[inline]
 fn frictional_step(
     p: &LinkClass,
     spring: &LinkSpring,
     s: &mut LinkState,
+    kin: &LinkKinematics,
     t: &Trial,
-    e_trial: Real,
-    losing: bool,
+    losing: Option<Real>,
 ) -> LinkForces {
     let k = &spring.stiffness;
     let mut diss = Dissipation::default();
@@ -472,12 +555,12 @@ fn frictional_step(
     if t.fn_ < 0.0 {
         s.status = LinkStatus::Broken;
         s.shear_force = Vec3::zeros();
-        diss.breakage = if losing { e_trial } else { spring_energy(fs_trial_mag, t.ks) };
+        diss.breakage = normal_and_shear_exit(spring, kin, t) + losing.unwrap_or(0.0);
         return LinkForces { dissipated: diss, event: LinkEvent::Separated, ..Default::default() };
     }
     let cap = t.fn_ * p.strength.tan_phi;
     let fs = if fs_trial_mag > cap {
-        if !losing {
+        if losing.is_none() {
             diss.friction = cap_dissipation(fs_trial_mag, cap, t.ks);
         }
         scale_to(t.fs, fs_trial_mag, cap)
@@ -485,8 +568,9 @@ fn frictional_step(
         t.fs
     };
     let elastic = spring_energy(t.fn_, k.kn) + spring_energy(fs.norm(), t.ks);
-    let event = if losing {
-        diss.breakage = (e_trial - elastic).max(0.0);
+    let event = if let Some(moments) = losing {
+        // the normal spring carries on as it was: its exit is 0
+        diss.breakage = spring_exit(t.fs, t.fs_before, fs, t.ks) + moments;
         LinkEvent::LostCohesion
     } else {
         LinkEvent::None
