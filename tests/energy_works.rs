@@ -343,8 +343,9 @@ fn overlaps_at_the_start_are_not_contacts_found_late() {
 /// tension, and the nodes fly on. Its springs leave the balance with their exit term
 /// `½·kn·x₋·x_t` (x₋, x_t the elongations one step before and at the break), which closes the
 /// leapfrog's balance exactly, so it closes through the break to round-off. Booked as the
-/// trial energy `½·kn·x_t²` (before), it was off by `½·kn·x_t·(x_t − x₋)`: for a break N steps
-/// into the stretch, about 1/N of the energy the link held. Here kn = E·A/L0 = 3.1e4 N/m,
+/// trial energy `½·kn·x_t²` (before), it was off by `½·kn·x_t·(x_t − x₋)`: the stretch of the
+/// last step over the stretch at the break (about 1/750 here, the nodes slowing down), times
+/// the energy the link held. Here kn = E·A/L0 = 3.1e4 N/m,
 /// the break at σn·A/kn = 1 mm, reached with nodes of 15.7 g flying apart at ±1.2 m/s (1 m/s
 /// is the least that breaks it) in some 500 steps of 1 µs.
 #[test]

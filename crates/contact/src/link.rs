@@ -291,7 +291,10 @@ pub fn update_link(
 /// limits and failure rules), with its constants in two parts: the `class` it shares with
 /// links of the same material and radius, and its own `spring`. Updates `state` and
 /// `plastic` (written only for a plastic material: a fragile link may be given a zero one
-/// that is not kept) and returns the forces and torques on both nodes.
+/// that is not kept) and returns the forces and torques on both nodes. `dt` is the step
+/// just done, dt₀, over which the nodes moved with `kin`'s velocities and spins: the energy
+/// a break releases is measured from the poses they had then (`x − v·dt₀`,
+/// `rot(−ω·dt₀)·q`), which a pose set by hand in between makes off for that step.
 ///
 /// Inlined into the links' loop, where only the fields of the engine's `LinkLoad` are kept:
 /// the rest is computed only for callers that read it.
@@ -357,15 +360,20 @@ fn spring_exit(trial: Vec3, before: Vec3, applied: Vec3, k: Real) -> Real {
         / k
 }
 
-/// The normal force of the step before (`kn·(L0 + e_p − L₋)`), from the nodes moved back
-/// along their velocities: `x₋ = x − v·dt₀` (the leapfrog moved them by `v·dt₀`).
-fn normal_force_before(spring: &LinkSpring, t: &Trial, kin: &LinkKinematics) -> Real {
-    let d = (kin.x2 - kin.v2 * t.dt) - (kin.x1 - kin.v1 * t.dt);
-    spring.stiffness.kn * (spring.rest_length + t.elongation - d.norm())
+/// The node-1-to-node-2 vector of the step before, from the nodes moved back along their
+/// velocities: `x₋ = x − v·dt₀` (the leapfrog moved them by `v·dt₀`).
+fn axis_before(t: &Trial, kin: &LinkKinematics) -> Vec3 {
+    (kin.x2 - kin.v2 * t.dt) - (kin.x1 - kin.v1 * t.dt)
 }
 
-/// The twisting and bending moments (on node 2) of the step before, split about the
-/// current normal, from the nodes turned back by their spins (`q₋ = rot(−ω·dt₀)·q`).
+/// The normal force of the step before, `kn·(L0 + e_p − L₋)` ([`axis_before`]).
+fn normal_force_before(spring: &LinkSpring, t: &Trial, kin: &LinkKinematics) -> Real {
+    spring.stiffness.kn * (spring.rest_length + t.elongation - axis_before(t, kin).norm())
+}
+
+/// The twisting and bending moments (on node 2) of the step before, split about the normal
+/// of the step before ([`axis_before`]), as they were applied, from the nodes turned back by
+/// their spins (`q₋ = rot(−ω·dt₀)·q`, the leapfrog's turn undone).
 fn moments_before(
     spring: &LinkSpring,
     s: &LinkState,
@@ -377,7 +385,8 @@ fn moments_before(
     let back = |q: &UnitQuaternion<Real>, w: &Vec3| UnitQuaternion::from_scaled_axis(-w * t.dt) * q;
     let (q1, q2) = (back(&kin.q1, &kin.w1), back(&kin.q2, &kin.w2));
     let el = rotation_vector(&(q2 * s.rest_rotation * q1.inverse())) - q1 * plastic.rotation;
-    let tw = t.n * t.n.dot(&el);
+    let n = axis_before(t, kin).try_normalize(0.0).unwrap_or(t.n);
+    let tw = n * n.dot(&el);
     (tw * -k.kt, (el - tw) * -k.kb)
 }
 
