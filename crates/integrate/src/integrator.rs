@@ -12,7 +12,7 @@
 use crate::integrator_lanes::{leapfrog_four, Chunk, Kick, LaneSums};
 use crate::parallel::MAX_CHUNKS_PER_TASK;
 pub use crate::step_work::StepWork;
-use crate::step_work::{flags_step, Checks, ChunkCheck};
+use crate::step_work::{flags_step, Checks, ChunkCheck, DRIFT_CHECKED_BEYOND};
 pub(crate) use crate::turn::{renormalized, turn_quaternion};
 use flexdem_elements::{Dofs, Particles};
 use flexdem_geom::{Real, Vec3};
@@ -59,7 +59,8 @@ pub fn leapfrog_step(
     step: &Leapfrog,
     parts: &mut Vec<StepWork>,
 ) -> StepWork {
-    let checks = &mut Checks { reach: None, verlet: None, flags: &mut Vec::new() };
+    let checks =
+        &mut Checks { reach: None, chunk_reach: &[], verlet: None, flags: &mut Vec::new() };
     leapfrog_step_lanes(p, force, torque, step, parts, true, checks)
 }
 
@@ -83,6 +84,7 @@ pub(crate) fn leapfrog_step_checked(
     let any = checks.flags.iter().fold(ChunkCheck::default(), |a, c| ChunkCheck {
         flagged: a.flagged | c.flagged,
         beyond: a.beyond | c.beyond,
+        drift: 0.0,
     });
     (work, any)
 }
@@ -106,16 +108,38 @@ fn leapfrog_step_lanes(
     // which leaves every sum as it was, bit for bit (a sum started at +0 never becomes −0)
     let undamped = lambda == 0.0;
     let dt2 = dt * dt;
-    let (reach, verlet) = (checks.reach, checks.verlet);
+    let (reach, chunk_reach, verlet) = (checks.reach, checks.chunk_reach, checks.verlet);
     let lanes = Kick { gravity: *gravity, lambda, undamped, kick, previous, dt };
     let check = |c: usize, p: &Chunk<'_>| {
+        // the chunk's new state, in cache: whether it is finite, its largest speed² and
+        // coordinate (one pass, no particle's reach, reference or limit read)
+        let state = p.pos.iter().zip(p.vel.iter()).zip(p.ang.iter());
+        let (finite, v2, x_max) = state.fold((true, 0.0, 0.0), |(f, v2, xm), ((x, v), w)| {
+            let sum = x.sum() + v.sum() + w.sum();
+            (f & sum.is_finite(), v.norm_squared().max(v2), x.amax().max(xm))
+        });
         let flagged = reach.is_some_and(|reach| {
+            // every particle within the chunk's smallest reach: none flagged (the same
+            // answer as each against its own, `flags_step`)
+            if finite && chunk_reach.get(c).is_some_and(|&r| v2 * dt2 <= r * r) {
+                return false;
+            }
             let reach = &reach[c * CHUNK..c * CHUNK + p.pos.len()];
             let moved = p.pos.iter().zip(p.vel.iter()).zip(p.ang.iter()).zip(reach);
             moved.fold(false, |any, (((x, v), w), &r)| any | flags_step(x, v, w, r, dt2))
         });
-        let beyond = verlet.is_some_and(|v| v.any_beyond(c * CHUNK, p.pos));
-        ChunkCheck { flagged, beyond }
+        let (beyond, drift) = verlet.map_or((false, 0.0), |v| {
+            // a bound on any particle's move in the step, round-off of `x + v·dt` included
+            let moved = v2.sqrt() * dt * (1.0 + 1e-12) + x_max * 1e-15;
+            let drift = v.drift.get(c).map_or(Real::INFINITY, |d| d + moved);
+            let limit = v.chunk_limits.get(c).copied().unwrap_or(0.0);
+            if finite && drift <= DRIFT_CHECKED_BEYOND * limit {
+                (false, drift)
+            } else {
+                (v.any_beyond(c * CHUNK, p.pos), drift)
+            }
+        });
+        ChunkCheck { flagged, beyond, drift }
     };
     if p.len() <= CHUNK {
         // one chunk (a small scene): on this thread, without a parallel dispatch (the
@@ -373,7 +397,8 @@ mod tests {
             let t: Vec<Vec3> = (0..n).map(|_| Vec3::new(r(), r(), r())).collect();
             let step = Leapfrog { gravity, damping, previous: 1e-4, dt: 1.1e-4 };
             let (mut a, mut b) = (p.clone(), p.clone());
-            let none = &mut Checks { reach: None, verlet: None, flags: &mut Vec::new() };
+            let flags = &mut Vec::new();
+            let none = &mut Checks { reach: None, chunk_reach: &[], verlet: None, flags };
             let wa = leapfrog_step_lanes(&mut a, &f, &t, &step, &mut Vec::new(), true, none);
             let wb = leapfrog_step_lanes(&mut b, &f, &t, &step, &mut Vec::new(), false, none);
             // the energy terms, summed lane by lane, differ from the one-by-one sums by
@@ -562,8 +587,25 @@ mod tests {
             let mut limits = vec![1.0; n];
             let near = case.map_or(n / 2, |(i, _)| (i + 11) % n);
             limits[near] = 0.1 * 1e-4 * (1.0 - 1e-9);
-            let verlet = Some(VerletWatch { reference: &reference, limits: &limits });
-            let checks = &mut Checks { reach: Some(&reach), verlet, flags: &mut flags };
+            // per chunk, as the collider keeps them: the smallest reach and limit, and no
+            // drift yet (just built)
+            let smallest = |v: &[Real]| -> Vec<Real> {
+                v.chunks(CHUNK).map(|c| c.iter().copied().fold(Real::INFINITY, Real::min)).collect()
+            };
+            let (chunk_reach, chunk_limits) = (smallest(&reach), smallest(&limits));
+            let drift = vec![0.0; n.div_ceil(CHUNK)];
+            let verlet = Some(VerletWatch {
+                reference: &reference,
+                limits: &limits,
+                chunk_limits: &chunk_limits,
+                drift: &drift,
+            });
+            let checks = &mut Checks {
+                reach: Some(&reach),
+                chunk_reach: &chunk_reach,
+                verlet,
+                flags: &mut flags,
+            };
             let (wa, found) = leapfrog_step_checked(&mut a, &f, &t, &step, &mut Vec::new(), checks);
             let flagged = found.flagged;
             let wb = leapfrog_step(&mut b, &f, &t, &step, &mut Vec::new());
@@ -588,11 +630,18 @@ mod tests {
             // with limits of 1 m, only the particle thrown to infinity passes its own (1e4 N
             // move it by 0.1 m; a NaN compares false, as in the collider: `flags_step` has it)
             let mut c = p.clone();
-            let far = VerletWatch { reference: &reference, limits: &vec![1.0; n] };
-            let checks = &mut Checks { reach: None, verlet: Some(far), flags: &mut flags };
+            let ones = vec![1.0; n];
+            let far = VerletWatch {
+                reference: &reference,
+                limits: &ones,
+                chunk_limits: &smallest(&ones),
+                drift: &drift,
+            };
+            let checks =
+                &mut Checks { reach: None, chunk_reach: &[], verlet: Some(far), flags: &mut flags };
             let (_, found) = leapfrog_step_checked(&mut c, &f, &t, &step, &mut Vec::new(), checks);
             let pushed = case.is_some_and(|(_, x)| x.is_infinite());
-            assert_eq!(found, ChunkCheck { flagged: false, beyond: pushed }, "{case:?}");
+            assert_eq!((found.flagged, found.beyond), (false, pushed), "{case:?}");
         }
     }
 }

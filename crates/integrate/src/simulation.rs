@@ -237,6 +237,7 @@ impl Simulation {
         let i = self.particle(i, &position, "position")?;
         self.state.model.particles.pos[i] = position;
         self.pipeline.moved_beyond = None;
+        self.pipeline.collider.forget_drift();
         Ok(())
     }
 

@@ -283,7 +283,8 @@ impl Simulation {
         let verlet = pipeline.collider.verlet_watch(self.state.model.particles.len());
         let watched = verlet.is_some();
         let (reach, flags) = (Some(&pipeline.collider.reach[..]), &mut pipeline.step_flags);
-        let checks = &mut Checks { reach, verlet, flags };
+        let chunk_reach = &pipeline.collider.chunk_reach[..];
+        let checks = &mut Checks { reach, chunk_reach, verlet, flags };
         let (mut work, found) = leapfrog_step_checked(
             &mut self.state.model.particles,
             &pipeline.force,
@@ -293,6 +294,9 @@ impl Simulation {
             checks,
         );
         pipeline.moved_beyond = watched.then_some(found.beyond);
+        if watched {
+            pipeline.collider.set_drift(pipeline.step_flags.iter().map(|c| c.drift));
+        }
         work.boundary += 0.5 * walls.before * previous;
         work.boundary_next += 0.5 * walls.after * dt;
         // the dashpots' forces at t over the two halves of the kick (model.md §7): the second

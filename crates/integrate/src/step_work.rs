@@ -55,22 +55,34 @@ impl std::ops::AddAssign for StepWork {
     }
 }
 
-/// What the leapfrog checks after moving a chunk: the particles' reaches (none: no check),
-/// the collider's watch of their moves since its last build (none: no check) and the
+/// What the leapfrog checks after moving a chunk: the particles' reaches (none: no check)
+/// and their smallest per chunk, the collider's watch of their moves since its last build (none: no check) and the
 /// chunks' answers (a buffer kept by the caller).
 pub(crate) struct Checks<'a> {
     pub(crate) reach: Option<&'a [Real]>,
+    /// The smallest reach of each chunk (empty: every particle is checked against its own).
+    pub(crate) chunk_reach: &'a [Real],
     pub(crate) verlet: Option<VerletWatch<'a>>,
     pub(crate) flags: &'a mut Vec<ChunkCheck>,
 }
 
 /// Where each particle was at the collider's last build and how far it may move from there
-/// before the next (`Collider::verlet_watch`), one entry per particle.
+/// before the next (`Collider::verlet_watch`), one entry per particle; and per chunk of the
+/// leapfrog, the smallest limit and a bound on how far its particles have moved since
+/// (`drift`: while it is below the limit, no particle of the chunk can be beyond its own,
+/// and the chunk's references and limits are not read).
 #[derive(Clone, Copy)]
 pub(crate) struct VerletWatch<'a> {
     pub(crate) reference: &'a [Vec3],
     pub(crate) limits: &'a [Real],
+    pub(crate) chunk_limits: &'a [Real],
+    pub(crate) drift: &'a [Real],
 }
+
+/// The part of a chunk's limit its drift may reach before its particles are checked one by
+/// one: the drift is an upper bound (round-off included), so any part below 1 gives the
+/// same answers as checking every particle.
+pub(crate) const DRIFT_CHECKED_BEYOND: Real = 0.75;
 
 impl VerletWatch<'_> {
     /// Whether one of the particles from `first` on, at `pos`, is farther than its limit
@@ -92,12 +104,14 @@ pub(crate) fn beyond_limit(x: &Vec3, x0: &Vec3, limit: Real) -> bool {
 }
 
 /// A chunk's answers to the leapfrog's checks.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub(crate) struct ChunkCheck {
     /// A particle may have gone wrong ([`flags_step`]).
     pub(crate) flagged: bool,
     /// A particle moved beyond its limit since the collider's last build.
     pub(crate) beyond: bool,
+    /// The chunk's drift after the step (see [`VerletWatch`]; 0 without a watch).
+    pub(crate) drift: Real,
 }
 
 /// Whether a particle may have gone wrong in the step (`x`, `v`, `w` its new position,
