@@ -121,19 +121,24 @@ fn leapfrog_step_lanes(
         let flagged = reach.is_some_and(|reach| {
             // every particle within the chunk's smallest reach: none flagged (the same
             // answer as each against its own, `flags_step`)
+            let reach = &reach[c * CHUNK..c * CHUNK + p.pos.len()];
+            let each = || {
+                let moved = p.pos.iter().zip(p.vel.iter()).zip(p.ang.iter()).zip(reach);
+                moved.fold(false, |any, (((x, v), w), &r)| any | flags_step(x, v, w, r, dt2))
+            };
             if finite && chunk_reach.get(c).is_some_and(|&r| v2 * dt2 <= r * r) {
+                debug_assert!(!each(), "chunk {c}: the smallest reach passed a flagged particle");
                 return false;
             }
-            let reach = &reach[c * CHUNK..c * CHUNK + p.pos.len()];
-            let moved = p.pos.iter().zip(p.vel.iter()).zip(p.ang.iter()).zip(reach);
-            moved.fold(false, |any, (((x, v), w), &r)| any | flags_step(x, v, w, r, dt2))
+            each()
         });
         let (beyond, drift) = verlet.map_or((false, 0.0), |v| {
             // a bound on any particle's move in the step, round-off of `x + v·dt` included
             let moved = v2.sqrt() * dt * (1.0 + 1e-12) + x_max * 1e-15;
             let drift = v.drift.get(c).map_or(Real::INFINITY, |d| d + moved);
-            let limit = v.chunk_limits.get(c).copied().unwrap_or(0.0);
+            let limit = v.chunk_limits.get(c).copied().unwrap_or(Real::NEG_INFINITY);
             if finite && drift <= DRIFT_CHECKED_BEYOND * limit {
+                debug_assert!(!v.any_beyond(c * CHUNK, p.pos), "chunk {c}: drift {drift}");
                 (false, drift)
             } else {
                 (v.any_beyond(c * CHUNK, p.pos), drift)

@@ -56,8 +56,8 @@ impl std::ops::AddAssign for StepWork {
 }
 
 /// What the leapfrog checks after moving a chunk: the particles' reaches (none: no check)
-/// and their smallest per chunk, the collider's watch of their moves since its last build (none: no check) and the
-/// chunks' answers (a buffer kept by the caller).
+/// and their smallest per chunk, the collider's watch of their moves since its last build
+/// (none: no check) and the chunks' answers (a buffer kept by the caller).
 pub(crate) struct Checks<'a> {
     pub(crate) reach: Option<&'a [Real]>,
     /// The smallest reach of each chunk (empty: every particle is checked against its own).
@@ -80,8 +80,10 @@ pub(crate) struct VerletWatch<'a> {
 }
 
 /// The part of a chunk's limit its drift may reach before its particles are checked one by
-/// one: the drift is an upper bound (round-off included), so any part below 1 gives the
-/// same answers as checking every particle.
+/// one: the drift is an upper bound (the round-off of `x + v·dt` included), and the margin
+/// left absorbs the round-off of its own sums and of [`beyond_limit`], so the answers are
+/// those of checking every particle (speeds below 1e-154 m/s, whose squares underflow,
+/// aside: they would matter only for limits below some 1e-140 m).
 pub(crate) const DRIFT_CHECKED_BEYOND: Real = 0.75;
 
 impl VerletWatch<'_> {
