@@ -536,6 +536,15 @@ mod tests {
         crate::Simulation::new(model, crate::Settings { gravity, ..Default::default() }).unwrap()
     }
 
+    /// [`falling_spheres`] with the energy watch off, for tests that move or kick a sphere
+    /// by hand (energy the run did not make, which the watch would stop).
+    fn falling_spheres_unwatched() -> crate::Simulation {
+        let mut sim = falling_spheres();
+        let settings = crate::Settings { energy_tolerance: None, ..sim.settings().clone() };
+        sim.set_settings(settings).unwrap();
+        sim
+    }
+
     /// The leapfrog's watch of the moves is the collider's own test: after every step it
     /// says a particle passed its limit exactly when a scan of every particle does, and the
     /// collider rebuilds when it says so.
@@ -562,10 +571,8 @@ mod tests {
     /// skip their references) no longer holds, and its watch stays the collider's scan.
     #[test]
     fn a_particle_moved_by_hand_within_its_limit_stays_watched() {
-        let mut sim = falling_spheres();
-        // (the kick by hand below makes energy: the watch is off)
-        let settings = crate::Settings { energy_tolerance: None, ..sim.settings().clone() };
-        sim.set_settings(settings).unwrap();
+        // (the kick by hand below makes energy)
+        let mut sim = falling_spheres_unwatched();
         sim.run(2).unwrap();
         let builds = sim.collider().builds;
         let (i, limit) = (30, sim.pipeline.collider.limits[30]);
@@ -593,9 +600,7 @@ mod tests {
     /// energy that would stop the run: the energy watch is off here.)
     #[test]
     fn a_particle_moved_by_hand_is_seen_at_the_next_step() {
-        let mut sim = falling_spheres();
-        let settings = crate::Settings { energy_tolerance: None, ..sim.settings().clone() };
-        sim.set_settings(settings).unwrap();
+        let mut sim = falling_spheres_unwatched();
         sim.run(2).unwrap();
         assert_eq!(sim.pipeline.moved_beyond, Some(false));
         let (builds, below) = (sim.collider().builds, sim.model().particles.pos[20]);
