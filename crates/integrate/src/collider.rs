@@ -45,7 +45,7 @@ use crate::broad_phase::BroadPhase;
 use crate::integrator::CHUNK;
 use crate::parallel::{any_zipped, MIN_PARALLEL_CHEAP};
 use crate::prefilter::{hull, proven_apart, write_hull, Hull};
-use crate::step_work::{beyond_limit, VerletWatch};
+use crate::step_work::{beyond_limit, chunk_minima, VerletWatch};
 use flexdem_elements::touching::Element;
 use flexdem_elements::{Model, ParticleKind};
 use flexdem_geom::{aabb_sphere, aabb_swept_segment, aabb_swept_triangle, Real, Vec3};
@@ -184,11 +184,8 @@ impl Collider {
             }
         }
         c.wall_limit = c.limits.iter().copied().fold(Real::INFINITY, Real::min);
-        let smallest_per_chunk = |v: &[Real]| -> Vec<Real> {
-            v.chunks(CHUNK).map(|c| c.iter().copied().fold(Real::INFINITY, Real::min)).collect()
-        };
-        c.chunk_reach = smallest_per_chunk(&c.reach);
-        c.chunk_limits = smallest_per_chunk(&c.limits);
+        c.chunk_reach = chunk_minima(&c.reach, CHUNK);
+        c.chunk_limits = chunk_minima(&c.limits, CHUNK);
         c
     }
 

@@ -79,6 +79,13 @@ pub(crate) struct VerletWatch<'a> {
     pub(crate) drift: &'a [Real],
 }
 
+/// The smallest of `v` in each chunk of `chunk` entries (the leapfrog's, `integrator::CHUNK`):
+/// the per-chunk reaches and limits of [`Checks`] and [`VerletWatch`].
+pub(crate) fn chunk_minima(v: &[Real], chunk: usize) -> Vec<Real> {
+    let chunks = v.chunks(chunk);
+    chunks.map(|c| c.iter().copied().fold(Real::INFINITY, Real::min)).collect()
+}
+
 /// The part of a chunk's limit its drift may reach before its particles are checked one by
 /// one: the drift is an upper bound (the round-off of `x + v·dt` included), and the margin
 /// left absorbs the round-off of its own sums and of [`beyond_limit`], so the answers are
