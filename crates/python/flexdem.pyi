@@ -111,6 +111,12 @@ class Simulation:
         """Velocity of wall `wall` (its index in the scene), m/s."""
     def impose_velocity(self, particles: Sequence[int], velocity: _Vec3) -> None:
         """Imposes a velocity (m/s) on `particles`; the supports' work is `boundary_work`."""
+    def set_velocity(self, particles: Sequence[int], velocity: _Vec3) -> None:
+        """Sets the velocity (m/s) of `particles` by hand: a kick on free DOFs, whose change of
+        kinetic energy is `load_work` (from the first step on), a new imposed velocity on
+        blocked ones (`boundary_work`). All or nothing."""
+    def set_angular_velocity(self, particles: Sequence[int], spin: _Vec3) -> None:
+        """Sets the angular velocity (rad/s) of `particles` by hand, as `set_velocity`."""
     def set_wall_servo(
         self,
         wall: int,

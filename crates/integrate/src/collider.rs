@@ -568,7 +568,7 @@ mod tests {
     /// skip their references) no longer holds, and its watch stays the collider's scan.
     #[test]
     fn a_particle_moved_by_hand_within_its_limit_stays_watched() {
-        // (the kick by hand below makes energy)
+        // (a move by hand can make energy: the watch is off)
         let mut sim = falling_spheres_unwatched();
         sim.run(2).unwrap();
         let builds = sim.collider().builds;

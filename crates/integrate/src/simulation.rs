@@ -5,7 +5,7 @@
 use crate::collider::Collider;
 use crate::contact::Contact;
 use crate::energy::{
-    distinct, imposed_jump, support_jump, Energy, EnergyWatch, ROTATIONS, TRANSLATIONS,
+    distinct, imposed_jump, kick_jump, support_jump, Energy, EnergyWatch, ROTATIONS, TRANSLATIONS,
 };
 use crate::integrator::kinetic_energy;
 use crate::links::Links;
@@ -208,24 +208,63 @@ impl Simulation {
 
     /// Sets the velocity of particle `i`: on its blocked DOFs a new imposed velocity, whose
     /// change of kinetic energy the support gives ([`support_jump`], boundary work); on its
-    /// free ones a kick, which no work accounts for: the energy watch sees it.
+    /// free ones a kick by hand, whose change `½m·(v² − v₀²)` is the user's work (load work,
+    /// [`kick_jump`]; before the first step the velocities are the start state, and nothing
+    /// is booked). The balance is then off by `½F·h·Δv` once (`h` the next kick's span).
     pub fn set_velocity(&mut self, i: u32, velocity: Vec3) -> Result<(), SimulationError> {
         let i = self.particle(i, &velocity, "velocity")?;
+        let started = self.state.clock.steps > 0;
         let p = &mut self.state.model.particles;
-        let jump = support_jump(p.mass[i], &p.vel[i], &velocity, p.blocked[i], TRANSLATIONS);
+        let (m, old, blocked) = (p.mass[i], &p.vel[i], p.blocked[i]);
+        let jump = support_jump(m, old, &velocity, blocked, TRANSLATIONS);
+        let kick = if started { kick_jump(m, old, &velocity, blocked, TRANSLATIONS) } else { 0.0 };
         p.vel[i] = velocity;
         self.state.energy.pending.boundary += jump;
+        self.state.energy.pending.load += kick;
         Ok(())
     }
 
-    /// Sets the angular velocity of particle `i` (rad/s; see [`Simulation::set_velocity`]).
+    /// Sets the angular velocity of particle `i` (rad/s; see [`Simulation::set_velocity`]:
+    /// on free DOFs the kick `½I·(ω² − ω₀²)` is load work).
     pub fn set_angular_velocity(&mut self, i: u32, spin: Vec3) -> Result<(), SimulationError> {
         let i = self.particle(i, &spin, "angular velocity")?;
+        let started = self.state.clock.steps > 0;
         let p = &mut self.state.model.particles;
-        let jump = support_jump(p.inertia[i], &p.ang_vel[i], &spin, p.blocked[i], ROTATIONS);
+        let (inertia, old, blocked) = (p.inertia[i], &p.ang_vel[i], p.blocked[i]);
+        let jump = support_jump(inertia, old, &spin, blocked, ROTATIONS);
+        let kick = if started { kick_jump(inertia, old, &spin, blocked, ROTATIONS) } else { 0.0 };
         p.ang_vel[i] = spin;
         self.state.energy.pending.boundary += jump;
+        self.state.energy.pending.load += kick;
         Ok(())
+    }
+
+    /// Sets the velocity of each of `particles` (all or nothing: every id is checked first),
+    /// each as [`Simulation::set_velocity`] does.
+    pub fn set_velocities(
+        &mut self,
+        particles: impl IntoIterator<Item = ParticleId>,
+        velocity: Vec3,
+    ) -> Result<(), SimulationError> {
+        let ids = distinct(particles);
+        for &i in &ids {
+            self.particle(i, &velocity, "velocity")?;
+        }
+        ids.into_iter().try_for_each(|i| self.set_velocity(i, velocity))
+    }
+
+    /// Sets the angular velocity of each of `particles` (all or nothing), each as
+    /// [`Simulation::set_angular_velocity`] does.
+    pub fn set_angular_velocities(
+        &mut self,
+        particles: impl IntoIterator<Item = ParticleId>,
+        spin: Vec3,
+    ) -> Result<(), SimulationError> {
+        let ids = distinct(particles);
+        for &i in &ids {
+            self.particle(i, &spin, "angular velocity")?;
+        }
+        ids.into_iter().try_for_each(|i| self.set_angular_velocity(i, spin))
     }
 
     /// Moves particle `i` to `position` by hand. The collider sees the move at the next step

@@ -205,6 +205,10 @@ pub(crate) enum Change {
     WallVelocity(u32, Vec3),
     /// Imposed velocity of particles (m/s): their translations are blocked and driven.
     ImposedVelocity(Vec<u32>, Vec3),
+    /// Velocity set by hand on particles (m/s): a kick on their free DOFs (load work).
+    Velocity(Vec<u32>, Vec3),
+    /// Angular velocity set by hand on particles (rad/s).
+    AngularVelocity(Vec<u32>, Vec3),
     /// A wall's control (a servo, or back to its velocity).
     WallControl(u32, flexdem_integrate::WallControl),
     /// A pressure on the PFacets of a structure, by name.
@@ -225,6 +229,8 @@ pub(crate) fn apply(sim: &mut Simulation, change: Change) -> Result<(), String> 
         Change::Gravity(g) => sim.set_gravity(g),
         Change::WallVelocity(w, v) => sim.set_wall_velocity(w, v),
         Change::ImposedVelocity(particles, v) => sim.impose_velocity(particles, v),
+        Change::Velocity(particles, v) => sim.set_velocities(particles, v),
+        Change::AngularVelocity(particles, w) => sim.set_angular_velocities(particles, w),
         Change::WallControl(w, control) => sim.set_wall_control(w, control),
         Change::AddPressure { structure, mut pressure } => {
             let model = sim.model();

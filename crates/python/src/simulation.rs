@@ -539,6 +539,20 @@ impl PySimulation {
         self.change(access::Change::ImposedVelocity(particles, velocity.into()))
     }
 
+    /// Sets the velocity `[vx, vy, vz]` (m/s) of `particles` by hand: on free DOFs a kick,
+    /// whose change of kinetic energy `½m·(v² − v₀²)` is the user's work (`load_work`, from
+    /// the first step on: before it the velocities are the start state); on blocked ones a
+    /// new imposed velocity (`boundary_work`). All or nothing.
+    fn set_velocity(&self, particles: Vec<u32>, velocity: [f64; 3]) -> PyResult<()> {
+        self.change(access::Change::Velocity(particles, velocity.into()))
+    }
+
+    /// Sets the angular velocity `[wx, wy, wz]` (rad/s) of `particles` by hand, as
+    /// `set_velocity` does (the kick `½I·(ω² − ω₀²)` is `load_work`).
+    fn set_angular_velocity(&self, particles: Vec<u32>, spin: [f64; 3]) -> PyResult<()> {
+        self.change(access::Change::AngularVelocity(particles, spin.into()))
+    }
+
     /// Adds a load for the rest of the run, given with the keys of a scene file's
     /// `[[loads]]` table: `select` (a dict: `structure` with `side`, `spheres`, `ids`,
     /// `box`, `plane`), `force` (N on each particle) or `total_force` (N, shared equally),

@@ -70,6 +70,26 @@ def test_a_velocity_imposed_mid_run_is_given_by_the_support():
     assert abs(e["relative_balance_error"]) < 1.5e-3
 
 
+def test_a_velocity_set_by_hand_is_the_users_work():
+    sim = flexdem.Simulation.from_toml(SPHERE)
+    sim.run(steps=1000)  # falling at 0.981 m/s
+    v0 = sim.velocities[0].copy()
+    sim.set_velocity([0], [2.0, 0, 3.0])
+    sim.set_angular_velocity([0], [0, 0, 10.0])
+    sim.run(steps=100)
+    e = sim.energy()
+    m = 2000 * 4 / 3 * np.pi * 0.1**3
+    inertia = 0.4 * m * 0.1**2
+    kick = 0.5 * m * (13.0 - v0 @ v0) + 0.5 * inertia * 100.0
+    assert e["load_work"] == pytest.approx(kick, rel=1e-12)
+    # the leapfrog's lag, ½·m·g·dt·Δv once, is all the balance is off by
+    assert abs(e["relative_balance_error"]) < 1e-3
+    assert sim.velocities[0][0] == pytest.approx(2.0)
+    with pytest.raises(ValueError):
+        sim.set_velocity([0, 7], [0, 0, 0])
+    assert sim.velocities[0][0] == pytest.approx(2.0)  # nothing set
+
+
 def test_wall_velocity_and_damping_are_set():
     sim = flexdem.Simulation.from_toml(SPHERE)
     sim.set_wall_velocity(0, [0, 0, 1.0])
