@@ -19,6 +19,7 @@ mod integrator;
 mod integrator_lanes;
 mod links;
 mod measures;
+mod model_edit;
 mod neighbours;
 mod offsets;
 mod pair_book;

@@ -9,6 +9,7 @@ use crate::energy::{
 };
 use crate::integrator::kinetic_energy;
 use crate::links::Links;
+use crate::model_edit::{links_kept, only_adds_bodies, same_topology};
 use crate::pipeline::{ForceHook, Pipeline};
 use crate::pressure::{check_pressure, Pressure};
 use crate::servo::WallControl;
@@ -17,7 +18,7 @@ use crate::state::{check_load, check_pressures, State};
 use crate::timers::Timers;
 use crate::SimulationError;
 use flexdem_contact::spring_energy;
-use flexdem_elements::{Connection, Dofs, Model, PFacet, ParticleId};
+use flexdem_elements::{Dofs, Model, ParticleId};
 use flexdem_geom::{Real, Vec3};
 use nalgebra::UnitQuaternion;
 
@@ -434,15 +435,18 @@ impl Simulation {
 
     /// Changes the model with `edit` (block DOFs, add bodies, change masks, ...), then checks
     /// it as [`Simulation::new`] does and rebuilds what depends on it: the pipeline
-    /// (collider, adjacency, contact buffers), the links when the connections changed (made
-    /// anew at rest in the current configuration: the elastic energy the old ones held goes
-    /// to `links_dissipated`), and the time step. When the particles, connections, PFacets or
-    /// walls changed, the contacts end (their friction stays counted as dissipated, their
-    /// elastic energy goes to `contact_releases`) and are found again at the next step, late:
-    /// the energy their normal springs bring back, up to what those held, is not counted
-    /// against the energy watch's limit on contacts found late, but a body added into another
-    /// is, and so is what a contact reborn without its overlap offset gains (it comes back
-    /// with its full force `kn·δ` where it carried `kn·(δ − δ₀)`). The
+    /// (collider, adjacency, contact buffers), the links when the connections changed
+    /// (connections added after the old ones get links at rest in the current configuration
+    /// and the old links keep their state; when an old connection changed, every link is made
+    /// anew at rest: the elastic energy the old ones held goes to `links_dissipated`), and the
+    /// time step. When the particles, connections, PFacets or
+    /// walls changed other than by bodies added apart from the old ones (which keeps every
+    /// contact and link, `model_edit.rs`), the contacts end (their friction stays counted as
+    /// dissipated, their elastic energy goes to `contact_releases`) and are found again at the
+    /// next step, late: the energy their normal springs bring back, up to what those held, is
+    /// not counted against the energy watch's limit on contacts found late, but a body added
+    /// into another is, and so is what a contact reborn without its overlap offset gains (it
+    /// comes back with its full force `kn·δ` where it carried `kn·(δ − δ₀)`). The
     /// wall controls are kept by wall index; walls added get [`WallControl::Velocity`], the
     /// controls of walls removed from the end go. A model that fails the checks is
     /// put back as it was; an error of the time step estimate (no stiffness anywhere) comes
@@ -465,17 +469,19 @@ impl Simulation {
         let model = &self.state.model;
         let terms = &mut self.state.energy.terms;
         if model.connections != before.connections {
-            // links made anew at rest: the elastic energy the old ones held leaves the
-            // system, as a breakage's does
-            terms.links_dissipated += terms.elastic_links;
-            terms.elastic_links = 0.0;
-            self.state.links = Links::from_model(model, self.state.settings.link_mode);
+            let mode = self.state.settings.link_mode;
+            if let Some(links) = links_kept(&self.state.links, model, mode) {
+                // connections added after the old ones: those keep their links
+                self.state.links = links;
+            } else {
+                // links made anew at rest: the elastic energy the old ones held leaves the
+                // system, as a breakage's does
+                terms.links_dissipated += terms.elastic_links;
+                terms.elastic_links = 0.0;
+                self.state.links = Links::from_model(model, mode);
+            }
         }
-        let same_topology = model.particles.len() == before.particles.len()
-            && same_nodes(&model.connections, &before.connections)
-            && same_faces(&model.pfacets, &before.pfacets)
-            && model.walls.len() == before.walls.len();
-        if !same_topology {
+        if !same_topology(&before, model) && !only_adds_bodies(&before, model) {
             // contacts ended while holding elastic energy give it up (`contact_releases`);
             // found again at the next step, late, their normal springs bring theirs back
             // (reborn with no shear), which is not energy the run made (`late_credit`)
@@ -580,15 +586,4 @@ impl Simulation {
         }
         Ok(n)
     }
-}
-
-/// Whether two lists of connections join the same nodes.
-fn same_nodes(a: &[Connection], b: &[Connection]) -> bool {
-    a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.nodes == y.nodes)
-}
-
-/// Whether two lists of PFacets have the same nodes and edges.
-fn same_faces(a: &[PFacet], b: &[PFacet]) -> bool {
-    a.len() == b.len()
-        && a.iter().zip(b).all(|(x, y)| x.nodes == y.nodes && x.connections == y.connections)
 }

@@ -115,32 +115,81 @@ fn a_model_edit_rebuilds_the_pipeline_or_changes_nothing() {
     sim.run(5).unwrap();
 }
 
-/// A model edit that ends the contacts (new bodies) and remakes the links (new connections)
-/// books the elastic energy they held as released (`contact_releases`, `links_dissipated`):
-/// the energy balance is the same just before and just after the edit. (What follows is not
-/// right yet: the ended contacts are found again at the next step with their full overlap,
-/// and the run gains energy beyond the births it books; see the issue-12 note.)
-#[test]
-fn a_model_edit_that_ends_contacts_and_links_keeps_the_balance() {
+/// The scene of `scene()` with the sphere pressed on the wall and the chain sagging, at a
+/// fixed step (so that an edit does not change it).
+fn loaded_scene() -> Simulation {
     let mut sim = scene();
-    // the sphere pressed on the wall, the chain sagging under gravity
     while sim.contacts().is_empty() {
         sim.step().unwrap();
     }
     sim.run(50).unwrap();
+    let fixed = Settings { time_step: TimeStep::Fixed(sim.dt()), ..sim.settings().clone() };
+    sim.set_settings(fixed).unwrap();
     let e = *sim.energy();
     assert!(e.elastic_contacts > 0.0 && e.elastic_links > 0.0, "{e:?}");
+    sim
+}
+
+/// A model edit that only adds bodies apart from the others (a chain of new nodes, a sphere,
+/// a wall, held still) keeps every contact and link as it was: the old bodies then move as
+/// in a twin without the edit, bit for bit, and the energy terms are the twin's (the new
+/// bodies hold none). Before, the contacts ended (their shear springs lost) and the links
+/// were made anew at rest in the sagged shape (their prestress lost).
+#[test]
+fn a_model_edit_that_only_adds_bodies_keeps_every_contact_and_link() {
+    let (mut a, mut b) = (loaded_scene(), loaded_scene());
+    let (n, links) = (a.model().particles.len(), a.model().connections.len());
+    let mat = a.model().particles.material[0];
+    a.edit_model(|m| {
+        let points = straight_line(Vec3::new(0.0, 3.0, 1.0), Vec3::new(1.0, 3.0, 1.0), 2).unwrap();
+        chain(m, &points, &StructureOptions::new("new", 0.01, mat)).unwrap();
+        let s = m.add_sphere(Vec3::new(3.0, 3.0, 1.0), 0.05, mat).unwrap();
+        m.block([s], Dofs::ALL).unwrap();
+        let new: Vec<u32> = (n as u32..m.particles.len() as u32).collect();
+        m.block(new, Dofs::ALL).unwrap();
+        m.add_wall(Vec3::new(0.0, 0.0, 5.0), -Vec3::z(), mat).unwrap();
+    })
+    .unwrap();
+    assert_eq!(a.contacts(), b.contacts());
+    assert_eq!(a.links().state[..links], b.links().state[..]);
+    assert_eq!(a.links().state.len(), links + 2);
+    for sim in [&mut a, &mut b] {
+        sim.run(200).unwrap();
+    }
+    let old = |sim: &Simulation| bits(&sim.model().particles.pos[..n]);
+    assert_eq!(old(&a), old(&b));
+    assert_eq!(bits(&a.model().particles.vel[..n]), bits(&b.model().particles.vel[..n]));
+    assert_eq!(a.contacts(), b.contacts());
+    assert_eq!(a.links().state[..links], b.links().state[..]);
+    assert_eq!(a.energy(), b.energy());
+    assert_eq!(a.energy_watch().late_births, 0.0);
+}
+
+/// A model edit that ends the contacts (a new body joined to an old one) and remakes the
+/// links (an old connection's rest length changed) books the elastic energy they held as
+/// released (`contact_releases`, `links_dissipated`): the energy balance is the same just
+/// before and just after the edit. (What follows is not right yet: the ended contacts are
+/// found again at the next step with their full overlap, and the run gains energy beyond
+/// the births it books; see the issue-12 note.)
+#[test]
+fn a_model_edit_that_ends_contacts_and_links_keeps_the_balance() {
+    let mut sim = loaded_scene();
+    let e = *sim.energy();
     let balance = e.balance();
     let mat = sim.model().particles.material[0];
     sim.edit_model(|m| {
-        let points = straight_line(Vec3::new(0.0, 3.0, 1.0), Vec3::new(1.0, 3.0, 1.0), 2).unwrap();
-        chain(m, &points, &StructureOptions::new("new", 0.01, mat)).unwrap();
+        let s = m.add_structure("joined").unwrap();
+        let node = m.add_node(s, Vec3::new(1.0, 0.0, 0.5), 0.01, mat, 1).unwrap();
+        m.add_connection(s, [3, node], 0.01, mat, 1).unwrap();
+        m.block([node], Dofs::ALL).unwrap(); // (no mass lumped: held)
+        m.connections[0].rest_length *= 1.01;
     })
     .unwrap();
     let after = *sim.energy();
     assert_eq!(after.contact_releases, e.contact_releases + e.elastic_contacts);
     assert_eq!(after.links_dissipated, e.links_dissipated + e.elastic_links);
     assert!((after.balance() - balance).abs() <= 1e-12 * balance.abs().max(e.stored()));
+    assert!(sim.contacts().is_empty());
     // the next step adds the new links' dissipation (none: elastic) to what was booked; it
     // used to set the sum to the new links' own, dropping the released energy
     sim.step().unwrap();
