@@ -247,11 +247,7 @@ impl Simulation {
         particles: impl IntoIterator<Item = ParticleId>,
         velocity: Vec3,
     ) -> Result<(), SimulationError> {
-        let ids = distinct(particles);
-        for &i in &ids {
-            self.particle(i, &velocity, "velocity")?;
-        }
-        ids.into_iter().try_for_each(|i| self.set_velocity(i, velocity))
+        self.set_each(distinct(particles), velocity, "velocity", Simulation::set_velocity)
     }
 
     /// Sets the angular velocity of each of `particles` (all or nothing), each as
@@ -261,11 +257,22 @@ impl Simulation {
         particles: impl IntoIterator<Item = ParticleId>,
         spin: Vec3,
     ) -> Result<(), SimulationError> {
-        let ids = distinct(particles);
+        let set = Simulation::set_angular_velocity;
+        self.set_each(distinct(particles), spin, "angular velocity", set)
+    }
+
+    /// `set(self, i, value)` for each of `ids`, once every id and the value are checked.
+    fn set_each(
+        &mut self,
+        ids: Vec<u32>,
+        value: Vec3,
+        what: &str,
+        set: fn(&mut Simulation, u32, Vec3) -> Result<(), SimulationError>,
+    ) -> Result<(), SimulationError> {
         for &i in &ids {
-            self.particle(i, &spin, "angular velocity")?;
+            self.particle(i, &value, what)?;
         }
-        ids.into_iter().try_for_each(|i| self.set_angular_velocity(i, spin))
+        ids.into_iter().try_for_each(|i| set(self, i, value))
     }
 
     /// Moves particle `i` to `position` by hand. The collider sees the move at the next step
