@@ -381,6 +381,7 @@ fn overlaps_at_the_start_are_not_contacts_found_late() {
     let mut sim = Simulation::new(model, fixed(1e-5)).unwrap();
     sim.run(2000).unwrap();
     assert_eq!(sim.contacts_born_deep(), 1);
+    assert_eq!(sim.energy_watch().late_births, 0.0);
     assert!(sim.contacts().is_empty(), "they flew apart");
     assert!(sim.relative_balance_error().abs() < 1e-3, "{}", sim.relative_balance_error());
 }
