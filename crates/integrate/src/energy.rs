@@ -286,6 +286,7 @@ pub(crate) fn support_jump(
 /// component's kinetic energy as `½p·v(t − dt₀/2)·v(t + dt/2)`; with `v(t − dt₀/2)` replaced
 /// by the kick, the next step's kinetic energy differs from `½p·v_c²` by `½p·a·h·v_c` (`h` the
 /// kick's span, `a` the next acceleration): the balance is left `½F·h·(v_c − v₀_c)` off, once
+/// (`F` from gravity, links and contacts: the works of loads and damping use the kick)
 /// (for a 100 kg rock kicked to 10 m/s under gravity with dt = 10⁻⁵ s, 0.05 J of 5 kJ).
 pub(crate) fn kick_jump(p: Real, old: &Vec3, new: &Vec3, blocked: Dofs, axes: [Dofs; 3]) -> Real {
     jump_where(p, old, new, |c| !blocked.contains(axes[c]))

@@ -9,7 +9,7 @@ use crate::energy::{
 };
 use crate::integrator::kinetic_energy;
 use crate::links::Links;
-use crate::model_edit::{links_kept, only_adds_bodies, same_topology};
+use crate::model_edit::{links_kept, only_adds_bodies};
 use crate::pipeline::{ForceHook, Pipeline};
 use crate::pressure::{check_pressure, Pressure};
 use crate::servo::WallControl;
@@ -211,7 +211,8 @@ impl Simulation {
     /// change of kinetic energy the support gives ([`support_jump`], boundary work); on its
     /// free ones a kick by hand, whose change `½m·(v² − v₀²)` is the user's work (load work,
     /// [`kick_jump`]; before the first step the velocities are the start state, and nothing
-    /// is booked). The balance is then off by `½F·h·Δv` once (`h` the next kick's span).
+    /// is booked). The balance is then off by `½F·h·Δv` once (`h` the next kick's span, `F` the
+    /// force of gravity, links and contacts: the works of loads and damping see the kick).
     pub fn set_velocity(&mut self, i: u32, velocity: Vec3) -> Result<(), SimulationError> {
         let i = self.particle(i, &velocity, "velocity")?;
         let started = self.state.clock.steps > 0;
@@ -446,7 +447,7 @@ impl Simulation {
     /// (connections added after the old ones get links at rest in the current configuration
     /// and the old links keep their state; when an old connection changed, every link is made
     /// anew at rest: the elastic energy the old ones held goes to `links_dissipated`), and the
-    /// time step. When the particles, connections, PFacets or
+    /// time step (an automatic one raised by at most `DT_GROWTH` once the run has started). When the particles, connections, PFacets or
     /// walls changed other than by bodies added apart from the old ones (which keeps every
     /// contact and link, `model_edit.rs`), the contacts end (their friction stays counted as
     /// dissipated, their elastic energy goes to `contact_releases`) and are found again at the
@@ -488,7 +489,7 @@ impl Simulation {
                 self.state.links = Links::from_model(model, mode);
             }
         }
-        if !same_topology(&before, model) && !only_adds_bodies(&before, model) {
+        if !only_adds_bodies(&before, model) {
             // contacts ended while holding elastic energy give it up (`contact_releases`);
             // found again at the next step, late, their normal springs bring theirs back
             // (reborn with no shear), which is not energy the run made (`late_credit`)
@@ -504,7 +505,12 @@ impl Simulation {
         }
         self.state.wall_controls.resize(model.walls.len(), WallControl::Velocity);
         self.pipeline.rebuild(&self.state);
-        self.update_time_step()?;
+        if self.state.clock.steps > 0 {
+            // (the kept contacts and links would feel a step raised at once)
+            self.re_estimate_time_step()?;
+        } else {
+            self.update_time_step()?;
+        }
         Ok(result)
     }
 

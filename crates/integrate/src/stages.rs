@@ -350,12 +350,19 @@ impl Simulation {
             TimeStep::Fixed(dt) => clock.critical_dt < dt && !self.fixed_dt_warned(),
         };
         if since >= self.state.settings.time_step_interval || (soon && since >= 10) {
-            let before = self.state.clock.dt;
-            self.update_time_step()?;
-            if matches!(self.state.settings.time_step, TimeStep::Auto { .. }) {
-                let clock = &mut self.state.clock;
-                clock.dt = clock.dt.min(before * DT_GROWTH);
-            }
+            self.re_estimate_time_step()?;
+        }
+        Ok(())
+    }
+
+    /// [`Simulation::update_time_step`] in a run: an automatic step raised by at most
+    /// [`DT_GROWTH`] (the leapfrog's kinetic energy has a term `O(F·v·(dt − dt₀))`).
+    pub(crate) fn re_estimate_time_step(&mut self) -> Result<(), SimulationError> {
+        let before = self.state.clock.dt;
+        self.update_time_step()?;
+        if matches!(self.state.settings.time_step, TimeStep::Auto { .. }) {
+            let clock = &mut self.state.clock;
+            clock.dt = clock.dt.min(before * DT_GROWTH);
         }
         Ok(())
     }

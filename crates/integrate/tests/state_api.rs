@@ -196,6 +196,26 @@ fn a_model_edit_that_ends_contacts_and_links_keeps_the_balance() {
     assert_eq!(sim.energy().links_dissipated, after.links_dissipated);
 }
 
+/// After a model edit an automatic step grows by at most the factor of any re-estimate
+/// (1.1), here where heavier bodies would allow ten times the step at once; a fixed step
+/// stays as it is.
+#[test]
+fn an_edit_raises_an_automatic_step_by_at_most_the_growth_factor() {
+    let mut sim = scene();
+    sim.run(20).unwrap();
+    let dt = sim.dt();
+    let heavier = |m: &mut Model| {
+        m.particles.mass.iter_mut().for_each(|x| *x *= 100.0);
+        m.particles.inertia.iter_mut().for_each(|x| *x *= 100.0);
+    };
+    sim.edit_model(heavier).unwrap();
+    // (the default step is half the critical one)
+    assert!(sim.critical_dt() * 0.5 > 9.0 * dt, "{} against {dt}", sim.critical_dt());
+    assert_eq!(sim.dt(), 1.1 * dt);
+    // (no step after it: masses changed by hand scale the kinetic energy, which no work
+    // books, and the watch would stop the run)
+}
+
 #[test]
 fn settings_changes_are_checked_and_rebuild_what_depends_on_them() {
     let mut sim = scene();
