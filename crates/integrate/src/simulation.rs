@@ -447,8 +447,9 @@ impl Simulation {
     /// (connections added after the old ones get links at rest in the current configuration
     /// and the old links keep their state; when an old connection changed, every link is made
     /// anew at rest: the elastic energy the old ones held goes to `links_dissipated`), and the
-    /// time step (an automatic one raised by at most `DT_GROWTH` once the run has started). When the particles, connections, PFacets or
-    /// walls changed other than by bodies added apart from the old ones (which keeps every
+    /// time step (an automatic one raised by at most `DT_GROWTH` once the run has started).
+    /// When the particles, connections, PFacets or walls changed other than by bodies added
+    /// apart from the old ones (which keeps every
     /// contact and link, `model_edit.rs`), the contacts end (their friction stays counted as
     /// dissipated, their elastic energy goes to `contact_releases`) and are found again at the
     /// next step, late: the energy their normal springs bring back, up to what those held, is
