@@ -367,6 +367,19 @@ fn a_sphere_moved_into_another_stops_the_run_on_the_energy_its_contact_puts_in()
     sim.run(100).unwrap();
     let late = sim.energy_watch().late_births;
     assert!((late - expected).abs() < 1e-9 * expected, "{late} against {expected}");
+
+    // switched on again, the watch watches from then on: the run goes on (it stopped at once
+    // on the late births summed while it was off), and a sphere moved into the other again
+    // stops it on that contact's energy alone (its overlap one step before is δ plus the
+    // step's separation, a few % at most), not on both
+    sim.set_settings(fixed(1e-5)).unwrap();
+    assert_eq!(sim.energy_watch().late_births, 0.0);
+    sim.run(100).unwrap();
+    let x = sim.model().particles.pos[0];
+    sim.set_position(1, x + Vec3::new(2.0 * r - delta, 0.0, 0.0)).unwrap();
+    let err = sim.step().unwrap_err();
+    let SimulationError::LateContacts { energy, .. } = err else { panic!("{err}") };
+    assert!((energy - expected).abs() < 0.1 * expected, "{energy} against {expected}");
 }
 
 /// Overlaps at the start (a heap built with overlaps) are the start state, not contacts found

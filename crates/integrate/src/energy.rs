@@ -20,7 +20,8 @@ pub struct Energy {
     pub gravity_work: Real,
     /// Work done by imposed loads and the user's force hook: forces and torques on the free
     /// DOFs, `Σ (F·v + τ·ω)·dt`; and by the user's kicks, velocities and spins set by hand on
-    /// free DOFs after the first step, `Σ ½m·(v² − v₀²)` (and `½I·(ω² − ω₀²)`) (J).
+    /// free DOFs after the first step, `Σ ½m·(v² − v₀²)` (and `½I·(ω² − ω₀²)`); and the
+    /// normal spring energy `½·kn·(L0 − L)²` of links a model edit made at rest (J).
     pub load_work: Real,
     /// Work done by the boundaries: moving walls (`Σ F_wall→body·v_wall·dt` over wall
     /// contacts) and imposed velocities and spins (the support's reaction, `−Σ (F·v + τ·ω)·dt`
@@ -175,6 +176,16 @@ impl EnergyWatch {
             late_births,
             late_credit,
         }
+    }
+
+    /// The watch turned on again at a balance `balance`: it watches from there (its start
+    /// and lowest balance that one, no contact found late yet), keeping the largest scale
+    /// seen. What the run made while the watch was off was let through by whoever switched
+    /// it off; the balance itself still shows it.
+    pub(crate) fn restart_at(&mut self, balance: Real) {
+        self.initial_balance = balance;
+        self.lowest_balance = balance;
+        self.late_births = 0.0;
     }
 
     /// The balance energy created is measured from, on the energy scale `scale` with the

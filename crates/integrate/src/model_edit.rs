@@ -9,11 +9,14 @@
 
 use crate::links::Links;
 use flexdem_contact::LinkKinematicsMode;
-use flexdem_elements::{Connection, Model, PFacet};
+use flexdem_elements::{Connection, Model, PFacet, Particles, Wall};
+use flexdem_geom::Real;
+use std::collections::HashMap;
 
 /// Whether `after` is `before` with bodies added after its own and apart from them: its
 /// particles start with `before`'s (of the same kind and structure), its connections and
-/// PFacets with `before`'s (the same nodes and edges), its walls with as many, and no
+/// PFacets with `before`'s (the same nodes and edges), its walls with `before`'s (the same
+/// planes, [`same_planes`]), and no
 /// connection or PFacet it adds holds a particle or an edge of `before`. Then every feature
 /// of `before` (particle, edge, face, wall) is the same feature in `after`, with the same
 /// neighbours: its contacts can go on.
@@ -25,6 +28,7 @@ pub(crate) fn only_adds_bodies(before: &Model, after: &Model) -> bool {
         && q.kind[..n] == p.kind[..]
         && q.structure[..n] == p.structure[..]
         && after.walls.len() >= before.walls.len()
+        && same_planes(&after.walls[..before.walls.len()], &before.walls)
         && after.connections.len() >= c
         && same_nodes(&after.connections[..c], &before.connections)
         && after.pfacets.len() >= before.pfacets.len()
@@ -35,33 +39,95 @@ pub(crate) fn only_adds_bodies(before: &Model, after: &Model) -> bool {
         })
 }
 
-/// The links of `after`'s connections when its first ones are `old`'s (the same nodes,
-/// material constants and rest lengths, so the same springs and classes): the old links keep
-/// their state (shear force, reference rotations, status, plastic strain), the added ones
-/// start at rest in the current configuration. None when an old connection changed: then
-/// every link is made anew ([`Links::from_model`]).
-pub(crate) fn links_kept(old: &Links, after: &Model, mode: LinkKinematicsMode) -> Option<Links> {
-    let n = old.nodes.len();
+/// The links of an edited model, and the elastic energy the edit moved.
+pub(crate) struct LinksCarried {
+    /// `after`'s links: those carried over with their state, the others new at rest.
+    pub links: Links,
+    /// Elastic energy the old links not carried over held (J): it leaves the system, as a
+    /// breakage's does (`links_dissipated`).
+    pub released: Real,
+    /// Elastic energy the links made at rest hold at once (J): `½·kn·(L0 − L)²` each, their
+    /// normal spring's (a rest length set by hand, or a connection between nodes apart from
+    /// it); the user's work (`load_work`). Shear, bending and twist start at zero.
+    pub made: Real,
+}
+
+/// The links of `after`'s connections, each old link whose connection is still there (the
+/// same nodes, in the same order; the same spring: stiffnesses and rest length; the same
+/// class) carried over with its state (shear force, reference rotations, status, broken or
+/// not, plastic strain, last loads), the others made at rest in the current configuration.
+/// The old particles (`before`'s) must still be the same particles (kinds and structures,
+/// first in `after`): otherwise a node id no longer names the same node, and every link is
+/// made at rest. Old links are matched by their nodes, not their index, so that removing or
+/// changing one connection leaves the others as they were (a broken link of a net stays
+/// broken when a connection is added).
+pub(crate) fn links_carried(
+    old: &Links,
+    before: &Model,
+    after: &Model,
+    mode: LinkKinematicsMode,
+) -> LinksCarried {
     let mut links = Links::from_model(after, mode);
-    let same = links.nodes.len() >= n
-        && links.nodes[..n] == old.nodes[..]
-        && (0..n).all(|i| {
-            let (a, b) = (old.spring[i] as usize, links.spring[i] as usize);
-            let (ca, cb) = (old.class[i] as usize, links.class[i] as usize);
-            old.springs[a] == links.springs[b] && old.classes[ca] == links.classes[cb]
+    let n = before.particles.len();
+    let (p, q) = (&before.particles, &after.particles);
+    let same_particles =
+        q.len() >= n && q.kind[..n] == p.kind[..] && q.structure[..n] == p.structure[..];
+    // the old links by their nodes, in order (two connections may join the same nodes)
+    let mut by_nodes: HashMap<[u32; 2], Vec<usize>> = HashMap::new();
+    if same_particles {
+        for (k, nodes) in old.nodes.iter().enumerate().rev() {
+            by_nodes.entry(*nodes).or_default().push(k);
+        }
+    }
+    let with_loads = old.loads.len() == old.len();
+    let mut carried = vec![false; old.len()];
+    let mut made = 0.0;
+    for i in 0..links.len() {
+        let from = by_nodes.get_mut(&links.nodes[i]).and_then(Vec::pop);
+        let same = from.filter(|&k| {
+            old.spring_of(k) == links.spring_of(i)
+                && old.classes[old.class[k] as usize] == links.classes[links.class[i] as usize]
         });
-    if !same || (!old.plastic.is_empty() && links.plastic.len() < n) {
-        return None;
+        let Some(k) = same else {
+            made += normal_energy_at_rest(&links, i, q);
+            continue;
+        };
+        carried[k] = true;
+        links.state[i] = old.state[k].clone();
+        if with_loads {
+            // (the last update's loads, which output reads until the next step)
+            links.loads[i] = old.loads[k];
+        }
+        if let (Some(to), Some(from)) = (links.plastic.get_mut(i), old.plastic.get(k)) {
+            *to = *from;
+        }
     }
-    links.state[..n].clone_from_slice(&old.state);
-    if old.loads.len() == n {
-        // (the last update's loads, which output reads until the next step)
-        links.loads[..n].clone_from_slice(&old.loads);
-    }
-    if !old.plastic.is_empty() {
-        links.plastic[..n].copy_from_slice(&old.plastic);
-    }
-    Some(links)
+    let released = (0..old.len())
+        .filter(|&k| !carried[k])
+        .map(|k| if with_loads { old.elastic_energy(k, p) } else { 0.0 })
+        .sum();
+    LinksCarried { links, released, made }
+}
+
+/// `½·kn·(L0 − L)²`: the normal spring's energy of link `i`, at rest but for its length `L`
+/// (its nodes' distance in `p`) against its rest length `L0` (eq 8's kn).
+fn normal_energy_at_rest(links: &Links, i: usize, p: &Particles) -> Real {
+    let [a, b] = links.nodes[i].map(|n| n as usize);
+    let spring = links.spring_of(i);
+    let stretch = spring.rest_length - (p.pos[b] - p.pos[a]).norm();
+    0.5 * spring.stiffness.kn * stretch * stretch
+}
+
+/// Whether two lists of walls are the same walls: the same planes (point and normal, to the
+/// bit), materials and collision groups (their velocities may differ: a wall set moving goes
+/// on touching what it touched). A wall moved or turned by hand, or one removed and another
+/// added in its place, is another feature, whose contacts' overlap offsets and shear springs
+/// belong to the old plane.
+fn same_planes(a: &[Wall], b: &[Wall]) -> bool {
+    let same = |x: &Wall, y: &Wall| {
+        x.point == y.point && x.normal == y.normal && x.material == y.material && x.mask == y.mask
+    };
+    a.len() == b.len() && a.iter().zip(b).all(|(x, y)| same(x, y))
 }
 
 /// Whether two lists of connections have the same nodes and structures, in the same order.
@@ -81,7 +147,7 @@ fn same_faces(a: &[PFacet], b: &[PFacet]) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use flexdem_contact::Material;
+    use flexdem_contact::{LinkStatus, Material};
     use flexdem_elements::builders::{chain, straight_line};
     use flexdem_elements::StructureOptions;
     use flexdem_geom::Vec3;
@@ -133,20 +199,60 @@ mod tests {
     }
 
     #[test]
-    fn old_links_keep_their_state_unless_their_connection_changed() {
+    fn old_links_keep_their_state_while_their_connection_is_there() {
         let before = model();
         let mode = LinkKinematicsMode::default();
         let mut old = Links::from_model(&before, mode);
+        old.state[0].shear_force = Vec3::new(0.0, 2.0, 0.0);
         old.state[1].shear_force = Vec3::new(0.0, 1.5, 0.0);
+        old.state[2].status = LinkStatus::Broken;
         let mut after = before.clone();
         let mat = after.particles.material[0];
         let points = straight_line(Vec3::new(0.0, 3.0, 0.0), Vec3::new(1.0, 3.0, 0.0), 2);
         chain(&mut after, &points.unwrap(), &StructureOptions::new("new", 0.01, mat)).unwrap();
-        let kept = links_kept(&old, &after, mode).expect("connections added after the old");
-        assert_eq!(kept.state.len(), 5);
-        assert_eq!(kept.state[..3], old.state[..]);
-        assert_eq!(kept.state[3], Links::from_model(&after, mode).state[3]);
+        let fresh = Links::from_model(&after, mode);
+        let added = links_carried(&old, &before, &after, mode);
+        assert_eq!(added.links.state.len(), 5);
+        assert_eq!(added.links.state[..3], old.state[..]);
+        assert_eq!(added.links.state[3..], fresh.state[3..]);
+        assert_eq!((added.released, added.made), (0.0, 0.0));
+        // a rest length changed by hand: that link is made at rest, the others (a broken one
+        // too) go on; its old energy leaves, its normal spring's at the new length comes in
         after.connections[0].rest_length *= 1.01;
-        assert!(links_kept(&old, &after, mode).is_none(), "a changed spring: made anew");
+        let changed = links_carried(&old, &before, &after, mode);
+        assert_eq!(changed.links.state[0], Links::from_model(&after, mode).state[0]);
+        assert_eq!(changed.links.state[1..3], old.state[1..]);
+        assert_eq!(changed.links.state[2].status, LinkStatus::Broken);
+        assert_eq!(changed.released, old.elastic_energy(0, &before.particles));
+        assert!(changed.released > 0.0);
+        let spring = changed.links.spring_of(0);
+        let stretch = spring.rest_length - (after.particles.pos[1] - after.particles.pos[0]).norm();
+        let made = 0.5 * spring.stiffness.kn * stretch * stretch;
+        assert!(made > 0.0 && (changed.made - made).abs() <= 1e-12 * made, "{}", changed.made);
+        // a connection removed: the others are matched by their nodes, not their index
+        let mut removed = before.clone();
+        removed.connections.remove(1);
+        let gone = links_carried(&old, &before, &removed, mode);
+        assert_eq!(gone.links.state[..], [old.state[0].clone(), old.state[2].clone()]);
+        assert_eq!(gone.released, old.elastic_energy(1, &before.particles));
+        // old particles that are no longer the same: every link made at rest
+        let mut kinds = before.clone();
+        kinds.particles.kind.swap(0, 4);
+        let anew = links_carried(&old, &before, &kinds, mode);
+        assert_eq!(anew.links.state, Links::from_model(&kinds, mode).state);
+    }
+
+    #[test]
+    fn a_wall_moved_by_hand_or_put_in_another_one_place_is_another_wall() {
+        let before = model();
+        let mut after = before.clone();
+        after.walls[0].velocity = Vec3::new(0.0, 0.0, 0.1);
+        assert!(only_adds_bodies(&before, &after), "a wall set moving is the same wall");
+        after.walls[0].point.z += 1e-3;
+        assert!(!only_adds_bodies(&before, &after));
+        let mut swapped = before.clone();
+        let w = swapped.walls[0];
+        swapped.walls[0] = flexdem_elements::Wall { normal: Vec3::x(), ..w };
+        assert!(!only_adds_bodies(&before, &swapped));
     }
 }

@@ -41,7 +41,9 @@ pub struct Settings {
     pub time_step_interval: u64,
     /// The run stops when the energy balance error, relative to the energy scale, passes this
     /// on the side of energy created (energy lost beyond it raises a warning; see
-    /// `EnergyWatch`); `None` switches the watch off.
+    /// `EnergyWatch`); `None` switches the watch off. Switched on again in a run
+    /// (`Simulation::set_settings`), it watches from then on: the balance of that moment is
+    /// its start, and contacts found late while it was off do not count.
     pub energy_tolerance: Option<Real>,
 }
 

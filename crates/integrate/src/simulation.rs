@@ -9,7 +9,7 @@ use crate::energy::{
 };
 use crate::integrator::kinetic_energy;
 use crate::links::Links;
-use crate::model_edit::{links_kept, only_adds_bodies};
+use crate::model_edit::{links_carried, only_adds_bodies};
 use crate::pipeline::{ForceHook, Pipeline};
 use crate::pressure::{check_pressure, Pressure};
 use crate::servo::WallControl;
@@ -169,7 +169,9 @@ impl Simulation {
     /// Changes the settings, validated first (nothing changes when they are refused; an error
     /// of the time step estimate comes after the change). A new Verlet factor
     /// rebuilds the collider, a new time step rule re-estimates the time step; the link
-    /// kinematics cannot change (the links were made with it: build a new simulation).
+    /// kinematics cannot change (the links were made with it: build a new simulation). The
+    /// energy watch switched on again in a run watches from then on
+    /// ([`Settings::energy_tolerance`]).
     pub fn set_settings(&mut self, settings: Settings) -> Result<(), SimulationError> {
         settings.validate()?;
         let old = &self.state.settings;
@@ -187,7 +189,12 @@ impl Simulation {
         let collider = settings.verlet_factor != old.verlet_factor;
         let time_step = settings.time_step != old.time_step
             || settings.time_step_interval != old.time_step_interval;
+        let watch_on = old.energy_tolerance.is_none() && settings.energy_tolerance.is_some();
         self.state.settings = settings;
+        if watch_on && self.state.clock.steps > 0 {
+            // (before the first step the watch starts with the run anyway)
+            self.state.energy.watch.restart_at(self.state.energy.terms.balance());
+        }
         if collider {
             self.pipeline.rebuild(&self.state);
         }
@@ -443,14 +450,15 @@ impl Simulation {
 
     /// Changes the model with `edit` (block DOFs, add bodies, change masks, ...), then checks
     /// it as [`Simulation::new`] does and rebuilds what depends on it: the pipeline
-    /// (collider, adjacency, contact buffers), the links when the connections changed
-    /// (connections added after the old ones get links at rest in the current configuration
-    /// and the old links keep their state; when an old connection changed, every link is made
-    /// anew at rest: the elastic energy the old ones held goes to `links_dissipated`), and the
-    /// time step (an automatic one raised by at most `DT_GROWTH` once the run has started).
-    /// When the particles, connections, PFacets or walls changed other than by bodies added
-    /// apart from the old ones (which keeps every
-    /// contact and link, `model_edit.rs`), the contacts end (their friction stays counted as
+    /// (collider, adjacency, contact buffers), the links when the connections changed (a
+    /// link whose connection is still there, the same nodes, spring and class, keeps its
+    /// state, broken or not; the others are made at rest in the current configuration: the
+    /// elastic energy the old ones held goes to `links_dissipated`, and what a new one's
+    /// normal spring holds at once, `½·kn·(L0 − L)²`, is the user's work, `load_work`), and
+    /// the time step (an automatic one raised by at most `DT_GROWTH` once the run has
+    /// started). When the particles, connections, PFacets or walls changed other than by
+    /// bodies added apart from the old ones (which keeps every contact, `model_edit.rs`),
+    /// the contacts end (their friction stays counted as
     /// dissipated, their elastic energy goes to `contact_releases`) and are found again at the
     /// next step, late: the energy their normal springs bring back, up to what those held, is
     /// not counted against the energy watch's limit on contacts found late, but a body added
@@ -478,17 +486,15 @@ impl Simulation {
         let model = &self.state.model;
         let terms = &mut self.state.energy.terms;
         if model.connections != before.connections {
+            // the links of connections still there go on; those of connections gone give up
+            // their elastic energy, as a breakage does, and those made at rest hold their
+            // normal spring's at once, the user's work (`links_carried`)
             let mode = self.state.settings.link_mode;
-            if let Some(links) = links_kept(&self.state.links, model, mode) {
-                // connections added after the old ones: those keep their links
-                self.state.links = links;
-            } else {
-                // links made anew at rest: the elastic energy the old ones held leaves the
-                // system, as a breakage's does
-                terms.links_dissipated += terms.elastic_links;
-                terms.elastic_links = 0.0;
-                self.state.links = Links::from_model(model, mode);
-            }
+            let carried = links_carried(&self.state.links, &before, model, mode);
+            terms.links_dissipated += carried.released;
+            terms.load_work += carried.made;
+            terms.elastic_links += carried.made - carried.released;
+            self.state.links = carried.links;
         }
         if !only_adds_bodies(&before, model) {
             // contacts ended while holding elastic energy give it up (`contact_releases`);
