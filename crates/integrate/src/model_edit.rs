@@ -4,8 +4,9 @@
 //! from the old ones (a rock put above a settled net, a sample into a membrane): every key
 //! of an old contact or link then names what it named before, so their states (overlap
 //! offsets, shear springs, the links' rest state, prestress and plastic strain) go on as if
-//! no edit had been made. Any other change of the topology ends the contacts; the links are
-//! made anew at rest when an old connection changed (its nodes, spring or class).
+//! no edit had been made. Any other change of the topology ends the contacts. The links go
+//! on wherever their connection is still there (the same nodes, spring and class); the
+//! others are made at rest ([`links_carried`]).
 
 use crate::links::Links;
 use flexdem_contact::LinkKinematicsMode;
@@ -83,12 +84,15 @@ pub(crate) fn links_carried(
     let mut carried = vec![false; old.len()];
     let mut made = 0.0;
     for i in 0..links.len() {
-        let from = by_nodes.get_mut(&links.nodes[i]).and_then(Vec::pop);
-        let same = from.filter(|&k| {
-            old.spring_of(k) == links.spring_of(i)
-                && old.classes[old.class[k] as usize] == links.classes[links.class[i] as usize]
-        });
-        let Some(k) = same else {
+        // the first old link on these nodes with the same spring and class (candidates are
+        // kept last first)
+        let same = |k: &usize| {
+            old.spring_of(*k) == links.spring_of(i)
+                && old.classes[old.class[*k] as usize] == links.classes[links.class[i] as usize]
+        };
+        let candidates = by_nodes.get_mut(&links.nodes[i]);
+        let found = candidates.and_then(|c| c.iter().rposition(same).map(|at| c.remove(at)));
+        let Some(k) = found else {
             made += normal_energy_at_rest(&links, i, q);
             continue;
         };

@@ -485,7 +485,7 @@ impl Simulation {
         }
         let model = &self.state.model;
         let terms = &mut self.state.energy.terms;
-        if model.connections != before.connections {
+        if model.connections != before.connections || model.materials != before.materials {
             // the links of connections still there go on; those of connections gone give up
             // their elastic energy, as a breakage does, and those made at rest hold their
             // normal spring's at once, the user's work (`links_carried`)
