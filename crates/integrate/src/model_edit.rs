@@ -9,7 +9,7 @@
 //! others are made at rest ([`links_carried`]).
 
 use crate::links::Links;
-use flexdem_contact::LinkKinematicsMode;
+use flexdem_contact::{spring_energy, LinkKinematicsMode};
 use flexdem_elements::{Connection, Model, PFacet, Particles, Wall};
 use flexdem_geom::Real;
 use std::collections::HashMap;
@@ -22,12 +22,9 @@ use std::collections::HashMap;
 /// of `before` (particle, edge, face, wall) is the same feature in `after`, with the same
 /// neighbours: its contacts can go on.
 pub(crate) fn only_adds_bodies(before: &Model, after: &Model) -> bool {
-    let (p, q) = (&before.particles, &after.particles);
-    let (n, c) = (p.len(), before.connections.len());
+    let (n, c) = (before.particles.len(), before.connections.len());
     let old = |node: u32| (node as usize) < n;
-    q.len() >= n
-        && q.kind[..n] == p.kind[..]
-        && q.structure[..n] == p.structure[..]
+    same_old_particles(before, after)
         && after.walls.len() >= before.walls.len()
         && same_planes(&after.walls[..before.walls.len()], &before.walls)
         && after.connections.len() >= c
@@ -69,18 +66,13 @@ pub(crate) fn links_carried(
     mode: LinkKinematicsMode,
 ) -> LinksCarried {
     let mut links = Links::from_model(after, mode);
-    let n = before.particles.len();
-    let (p, q) = (&before.particles, &after.particles);
-    let same_particles =
-        q.len() >= n && q.kind[..n] == p.kind[..] && q.structure[..n] == p.structure[..];
     // the old links by their nodes, in order (two connections may join the same nodes)
     let mut by_nodes: HashMap<[u32; 2], Vec<usize>> = HashMap::new();
-    if same_particles {
+    if same_old_particles(before, after) {
         for (k, nodes) in old.nodes.iter().enumerate().rev() {
             by_nodes.entry(*nodes).or_default().push(k);
         }
     }
-    let with_loads = old.loads.len() == old.len();
     let mut carried = vec![false; old.len()];
     let mut made = 0.0;
     for i in 0..links.len() {
@@ -93,33 +85,41 @@ pub(crate) fn links_carried(
         let candidates = by_nodes.get_mut(&links.nodes[i]);
         let found = candidates.and_then(|c| c.iter().rposition(same).map(|at| c.remove(at)));
         let Some(k) = found else {
-            made += normal_energy_at_rest(&links, i, q);
+            made += normal_energy_at_rest(&links, i, &after.particles);
             continue;
         };
         carried[k] = true;
         links.state[i] = old.state[k].clone();
-        if with_loads {
+        if let Some(load) = old.loads.get(k) {
             // (the last update's loads, which output reads until the next step)
-            links.loads[i] = old.loads[k];
+            links.loads[i] = *load;
         }
         if let (Some(to), Some(from)) = (links.plastic.get_mut(i), old.plastic.get(k)) {
             *to = *from;
         }
     }
-    let released = (0..old.len())
-        .filter(|&k| !carried[k])
-        .map(|k| if with_loads { old.elastic_energy(k, p) } else { 0.0 })
-        .sum();
+    let released =
+        (0..old.len()).filter(|&k| !carried[k]).map(|k| old.elastic_energy(k, &before.particles));
+    let released = released.sum();
     LinksCarried { links, released, made }
 }
 
-/// `½·kn·(L0 − L)²`: the normal spring's energy of link `i`, at rest but for its length `L`
-/// (its nodes' distance in `p`) against its rest length `L0` (eq 8's kn).
+/// `Fn²/2kn = ½·kn·(L0 − L)²`: the normal spring's energy of link `i`, at rest but for its
+/// length `L` (its nodes' distance in `p`) against its rest length `L0` (eq 8's kn; the
+/// link law's `Fn = kn·(L0 + e_p − L)` with no plastic elongation `e_p` yet).
 fn normal_energy_at_rest(links: &Links, i: usize, p: &Particles) -> Real {
     let [a, b] = links.nodes[i].map(|n| n as usize);
     let spring = links.spring_of(i);
-    let stretch = spring.rest_length - (p.pos[b] - p.pos[a]).norm();
-    0.5 * spring.stiffness.kn * stretch * stretch
+    let kn = spring.stiffness.kn;
+    spring_energy(kn * (spring.rest_length - (p.pos[b] - p.pos[a]).norm()), kn)
+}
+
+/// Whether `after`'s first particles are `before`'s: as many at least, of the same kinds and
+/// structures (so that an old particle id names the same body, node or sphere).
+fn same_old_particles(before: &Model, after: &Model) -> bool {
+    let (p, q) = (&before.particles, &after.particles);
+    let n = p.len();
+    q.len() >= n && q.kind[..n] == p.kind[..] && q.structure[..n] == p.structure[..]
 }
 
 /// Whether two lists of walls are the same walls: the same planes (point and normal, to the
