@@ -3,19 +3,23 @@
 # round one `flexdem bench ... --threads 1,2` (the two runs seconds apart, so a disturbance of
 # the host falls on both or on neither, more than between runs minutes apart), preceded by the
 # host's memory bandwidth from one and from two threads (`bench/membw.c`, built here) to show
-# how loaded the host was. Prints every round (its ratio of the mean steps, and of the median
-# steps), then the median and the range of the rounds' ratios, the ratio of the minima, how
-# many rounds reached TARGET (default 1.8), and the ratio of the fastest steps: the runs at
-# both thread counts take the same steps (the same state at every step), so each step's
-# fastest time over the rounds is its time on an undisturbed host, and their sum, rebuilds
-# and time-step estimates included, that of an undisturbed run.
+# how loaded the host was, and the round trip of a cache line between the two CPUs
+# (`bench/pingpong.c`: under about 150 ns the host has put them on cores that share a cache,
+# above on two core complexes, where data the two threads share costs several times more).
+# Prints every round (its ratio of the mean steps, and of the median steps), then the median
+# and the range of the rounds' ratios, the same for the rounds of each placement, the ratio
+# of the minima, how many rounds reached TARGET (default 1.8), and the ratio of the fastest
+# steps: the runs at both thread counts take the same steps (the same state at every step),
+# so each step's fastest time over the rounds is its time on an undisturbed host, and their
+# sum, rebuilds and time-step estimates included, that of an undisturbed run. NEAR_NS
+# (default 150) is the round trip that tells the two placements apart.
 #
 #   bench/scaling.sh BIN ROUNDS BENCH_ARGS...
 #   bench/scaling.sh target/release/flexdem 10 --scene packing --sizes 100000 --steps 137
 #
 # Give --steps: every run then ends in the same state, and the script checks it (one checksum).
 set -euo pipefail
-[ $# -ge 3 ] || { sed -n '2,11p' "$0" >&2; exit 2; }
+[ $# -ge 3 ] || { sed -n '2,19p' "$0" >&2; exit 2; }
 bin=$1 rounds=$2
 shift 2
 [ -x "$bin" ] || { echo "not an executable: $bin" >&2; exit 2; }
@@ -24,10 +28,14 @@ out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 here=$(cd "$(dirname "$0")" && pwd)
 cc -O2 -pthread "$here/membw.c" -o "$out/membw"
-printf '%5s %12s %12s %10s %10s %7s %9s\n' round 'membw_1 GB/s' 'membw_2 GB/s' ms_1thr ms_2thr ratio med_ratio
+cc -O2 -pthread "$here/pingpong.c" -o "$out/pingpong"
+near=${NEAR_NS:-150}
+printf '%5s %12s %12s %6s %10s %10s %7s %9s\n' round 'membw_1 GB/s' 'membw_2 GB/s' rt_ns ms_1thr \
+    ms_2thr ratio med_ratio
 for r in $(seq 1 "$rounds"); do
     bw1=$("$out/membw" 256 1 | awk '{ print $(NF - 4) }')
     bw2=$("$out/membw" 256 2 | awk '{ print $(NF - 4) }')
+    rt=$("$out/pingpong" | awk '{ print $(NF - 4) }')
     "$bin" bench "$@" --threads 1,2 --csv "$out/r$r.csv" --step-times "$out/s$r.csv" \
         >"$out/r$r.log" 2>&1 ||
         { cat "$out/r$r.log" >&2; echo "round $r failed" >&2; exit 1; }
@@ -42,9 +50,9 @@ for r in $(seq 1 "$rounds"); do
     m1=$(awk '$1 == 1 { print $4 }' "$out/r$r.txt")
     m2=$(awk '$1 == 2 { print $4 }' "$out/r$r.txt")
     med_ratio=$(awk -v a="$m1" -v b="$m2" 'BEGIN { printf "%.3f", a / b }')
-    echo "$t1 $t2 $ratio" >>"$out/all.txt"
-    printf '%5d %12s %12s %10.3f %10.3f %7s %9s\n' "$r" "$bw1" "$bw2" "$t1" "$t2" "$ratio" \
-        "$med_ratio"
+    echo "$t1 $t2 $ratio $rt" >>"$out/all.txt"
+    printf '%5d %12s %12s %6s %10.3f %10.3f %7s %9s\n' "$r" "$bw1" "$bw2" "$rt" "$t1" "$t2" \
+        "$ratio" "$med_ratio"
 done
 sort -g -k3,3 "$out/all.txt" | awk -v t="$target" '
     { r[NR] = $3; if ($3 >= t) hit++ }
@@ -52,6 +60,16 @@ sort -g -k3,3 "$out/all.txt" | awk -v t="$target" '
         printf "ratio over %d rounds: median %.3f, range %.3f-%.3f; %d of %d rounds >= %s\n",
             NR, r[int((NR + 1) / 2)], r[1], r[NR], hit, NR, t
     }'
+for side in shared apart; do
+    sort -g -k3,3 "$out/all.txt" | awk -v t="$target" -v near="$near" -v side="$side" '
+        (side == "shared") == ($4 < near) { r[++n] = $3; if ($3 >= t) hit++ }
+        END {
+            what = side == "shared" ? "sharing a cache" : "on two core complexes"
+            if (n == 0) { printf "rounds with the CPUs %s: none\n", what; exit }
+            printf "rounds with the CPUs %s (round trip %s %d ns): %d, median %.3f, %d >= %s\n",
+                what, side == "shared" ? "<" : ">=", near, n, r[int((n + 1) / 2)], hit, t
+        }'
+done
 awk 'NR == 1 || $1 < m1 { m1 = $1 } NR == 1 || $2 < m2 { m2 = $2 }
     END { printf "minima: 1 thread %.3f ms, 2 threads %.3f ms, ratio %.3f\n", m1, m2, m1 / m2 }' \
     "$out/all.txt"
