@@ -125,6 +125,7 @@ impl ContactPipeline {
             loads[..n1].iter().chain(&loads[3..3 + n2])
         };
         let ended = &mut contacts.ended_dissipation;
+        self.pair_parts.set_in_use(false);
         if rayon::current_num_threads() == 1 && contacts.list.is_empty() {
             // one pass with no general contact to put among the pairs (a granular scene): the
             // keys are not looked at (their sink was a call per touching pair, 2.5 % of the
@@ -172,6 +173,7 @@ impl ContactPipeline {
                 index.release_pairs();
             }
             parts.with_general(index.has_general(), |i| !index.general_entries(i).is_empty());
+            parts.set_in_use(true);
             let scratch = &mut self.pairs;
             let report =
                 contacts.pairs.update_in_parts(model, dt, scratch, ended, parts, force, torque);

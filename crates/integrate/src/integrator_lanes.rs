@@ -77,6 +77,35 @@ pub(crate) struct Chunk<'a> {
     pub(crate) blocked: &'a [Dofs],
 }
 
+impl<'a> Chunk<'a> {
+    /// The first `n` particles and the others.
+    pub(crate) fn split_at(self, n: usize) -> (Chunk<'a>, Chunk<'a>) {
+        let Chunk { pos, vel, ori, ang, mass, inertia, f, t, blocked } = self;
+        let (pos, pos_b) = pos.split_at_mut(n);
+        let (vel, vel_b) = vel.split_at_mut(n);
+        let (ori, ori_b) = ori.split_at_mut(n);
+        let (ang, ang_b) = ang.split_at_mut(n);
+        let (mass, mass_b) = mass.split_at(n);
+        let (inertia, inertia_b) = inertia.split_at(n);
+        let (f, f_b) = f.split_at(n);
+        let (t, t_b) = t.split_at(n);
+        let (blocked, blocked_b) = blocked.split_at(n);
+        let a = Chunk { pos, vel, ori, ang, mass, inertia, f, t, blocked };
+        let b = Chunk {
+            pos: pos_b,
+            vel: vel_b,
+            ori: ori_b,
+            ang: ang_b,
+            mass: mass_b,
+            inertia: inertia_b,
+            f: f_b,
+            t: t_b,
+            blocked: blocked_b,
+        };
+        (a, b)
+    }
+}
+
 /// Advances the particles `idx[..count]` of chunk `p` (`count` from 1 to 4, any blocked
 /// DOFs; the lanes past `count` repeat a particle and are dropped) by one leapfrog step, as
 /// `leapfrog_step` advances each, adding their energy terms to `sums` lane by lane. `HELD`

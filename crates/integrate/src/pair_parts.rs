@@ -11,6 +11,15 @@
 //! its entries from the index (`gather.rs`). Every particle's sum is the same additions in the
 //! same order whatever the split, so the split may follow the thread count.
 //!
+//! The walls' pairs (after the spheres' in key order) are split into parts of their own, each
+//! a run of chunks whose spheres one spheres' part owns, and stepped with that part, on its
+//! thread ([`PairParts::runs`]): a sphere's wall is then met by the thread that steps the
+//! sphere's other pairs and its leapfrog. (In one part, the packing's floor, which every
+//! tenth sphere of 10⁵ touches, had one thread read and load half of the spheres of the
+//! other at every step: on a host that put the two cores on two AMD core complexes, where a
+//! line one core reads and the other writes goes through the I/O die, the other thread's
+//! leapfrog took 1.5 times as long; `bench/README.md`, twenty-third session.)
+//!
 //! With two parts of a packing of 10⁵ spheres in Morton order, 1 % of the spheres get loads
 //! from both parts and 14 % touch a wall: the gather of every particle's loads, which the
 //! one-thread pass does not need, took 14 % of a two-thread step. With 8 parts, 7 % get
@@ -19,6 +28,7 @@
 
 use crate::neighbours::NeighbourList;
 use crate::pair_chunk::PAIR_CHUNK;
+use crate::pair_keys::PairKeys;
 use flexdem_elements::virtual_sphere::Feature;
 
 /// How a particle's loads are summed when the pairs are stepped in parts.
@@ -47,28 +57,59 @@ pub(crate) const PARTS_PER_THREAD: usize = 4;
 /// parts of equal numbers of pairs the last took 1.6 times as long as the others).
 const WALL_PAIR_COST: f64 = 2.4;
 
-/// Splits `len` pairs, whose walls' pairs start at `first_wall`, into `parts` runs of whole
-/// chunks of about the same cost ([`WALL_PAIR_COST`]): `first_chunk` gets each run's first
-/// chunk, then the number of chunks.
-fn split_by_cost(len: usize, first_wall: usize, parts: usize, first_chunk: &mut Vec<usize>) {
-    let chunks = len.div_ceil(PAIR_CHUNK);
-    // the cost of the pairs before pair n
-    let cost_before = |n: usize| {
-        let walls = n.saturating_sub(first_wall);
-        (n - walls) as f64 + WALL_PAIR_COST * walls as f64
-    };
-    let total = cost_before(len);
+/// The cost of chunk `c` of `len` pairs whose walls' pairs start at `first_wall`, in pairs
+/// of two spheres ([`WALL_PAIR_COST`] a wall's pair).
+fn chunk_cost(c: usize, len: usize, first_wall: usize) -> f64 {
+    let (start, end) = (c * PAIR_CHUNK, ((c + 1) * PAIR_CHUNK).min(len));
+    let walls = end.saturating_sub(first_wall.max(start));
+    (end - start - walls) as f64 + walls as f64 * WALL_PAIR_COST
+}
+
+/// Splits chunks whose costs are `cost` into `parts` runs of whole chunks of about the same
+/// cost (each run ends at the first chunk boundary where the cost before reaches its share):
+/// `first_chunk` gets each run's first chunk, then the number of chunks.
+fn split_costs(cost: &[f64], parts: usize, first_chunk: &mut Vec<usize>) {
+    let total: f64 = cost.iter().sum();
     first_chunk.clear();
     first_chunk.push(0);
-    let mut c = 0;
+    let (mut c, mut before) = (0, 0.0);
     for p in 1..parts {
         let target = total * p as f64 / parts as f64;
-        while c < chunks && cost_before((c * PAIR_CHUNK).min(len)) < target {
+        while c < cost.len() && before < target {
+            before += cost[c];
             c += 1;
         }
         first_chunk.push(c);
     }
-    first_chunk.push(chunks);
+    first_chunk.push(cost.len());
+}
+
+/// The sphere of pair `n` of `keys` (below `particles`): the first of two spheres, a wall's
+/// sphere; `particles` past the end.
+fn pair_sphere(keys: &PairKeys, n: usize, particles: usize) -> usize {
+    match keys.try_get(n) {
+        Some((Feature::Particle(i), _)) | Some((Feature::Wall(_), Feature::Particle(i))) => {
+            (i as usize).min(particles)
+        }
+        _ => particles,
+    }
+}
+
+/// The sphere of the middle pair of chunk `c` of `keys` ([`pair_sphere`]): where a walls'
+/// chunk's spheres are (a wall's pairs are in the order of their spheres).
+fn middle_sphere(keys: &PairKeys, c: usize, particles: usize) -> usize {
+    let end = ((c + 1) * PAIR_CHUNK).min(keys.len());
+    pair_sphere(keys, (c * PAIR_CHUNK + end) / 2, particles)
+}
+
+/// Splits `len` pairs, whose walls' pairs start at `first_wall`, into `parts` runs of whole
+/// chunks of about the same cost ([`WALL_PAIR_COST`]): `first_chunk` gets each run's first
+/// chunk, then the number of chunks.
+#[cfg(test)]
+fn split_by_cost(len: usize, first_wall: usize, parts: usize, first_chunk: &mut Vec<usize>) {
+    let cost: Vec<f64> =
+        (0..len.div_ceil(PAIR_CHUNK)).map(|c| chunk_cost(c, len, first_wall)).collect();
+    split_costs(&cost, parts, first_chunk);
 }
 
 /// The split of a neighbour list's pairs into parts and how each particle's loads are
@@ -77,12 +118,31 @@ fn split_by_cost(len: usize, first_wall: usize, parts: usize, first_chunk: &mut 
 pub(crate) struct PairParts {
     /// The neighbour list generation, particle count and part count of the split.
     built_for: Option<(u64, usize, usize)>,
-    /// Per part, its first chunk of [`PAIR_CHUNK`] pairs; then the number of chunks.
+    /// Per part, its first chunk of [`PAIR_CHUNK`] pairs; then the number of chunks. The
+    /// spheres' parts come first, then the walls' parts.
     first_chunk: Vec<usize>,
-    /// Per part, the first particle it owns; then the number of particles.
+    /// Per part, the first particle it owns (a walls' part owns none: the particle count);
+    /// then the number of particles.
     first_particle: Vec<usize>,
+    /// The number of spheres' parts: the parts that own particles.
+    spheres: usize,
+    /// Per walls' part, the spheres' part it goes with (the owner of its first chunk's
+    /// middle sphere).
+    wall_home: Vec<usize>,
+    /// The parts in the order they are stepped: by the spheres' part each goes with (its
+    /// own for a spheres' part), then in order.
+    step_order: Vec<usize>,
+    /// Per spheres' part, where its run starts in `step_order`; then the number of parts.
+    run_start: Vec<usize>,
+    /// Per chunk of spheres' pairs, its cost with that of the walls' chunks its spheres go
+    /// with (the split's buffer).
+    chunk_cost: Vec<f64>,
+    /// Per chunk of spheres' pairs, the sphere of its first pair (the split's buffer).
+    chunk_sphere: Vec<usize>,
     /// Per particle, from the pairs alone.
     by_pairs: Vec<SumBy>,
+    /// Whether the last update of the pairs was in these parts.
+    in_use: bool,
     /// Per particle at this step: `by_pairs`, with the general contacts' particles
     /// [`SumBy::Gather`] (when there are general contacts).
     this_step: Vec<SumBy>,
@@ -105,21 +165,8 @@ impl PairParts {
             return;
         }
         let built_for = Some((pairs.generation(), particles, parts));
-        let keys = pairs.keys();
-        let chunks = keys.len().div_ceil(PAIR_CHUNK);
-        let parts = parts.clamp(1, chunks.max(1));
-        split_by_cost(keys.len(), keys.first_wall(), parts, &mut self.first_chunk);
-        // a part owns from the sphere of its first pair (none: from the end, a part of walls'
-        // pairs); the pairs are in key order, so these do not decrease
-        let first_sphere = |chunk: usize| match keys.try_get(chunk * PAIR_CHUNK) {
-            Some((Feature::Particle(i), _)) => (i as usize).min(particles),
-            _ => particles,
-        };
-        self.first_particle.clear();
-        self.first_particle.push(0);
-        self.first_particle.extend(self.first_chunk[1..parts].iter().map(|&c| first_sphere(c)));
-        self.first_particle.push(particles);
-        let first_wall = keys.first_wall();
+        self.split_chunks(pairs, particles, parts);
+        let first_wall = pairs.keys().first_wall();
         let part_of_pair =
             |n: usize| self.first_chunk.partition_point(|&c| c <= n / PAIR_CHUNK) - 1;
         let mut owner = 0;
@@ -144,6 +191,81 @@ impl PairParts {
             }
         }));
         self.built_for = built_for;
+    }
+
+    /// Splits the pairs of `pairs` (for `particles` particles) into about `parts` spheres'
+    /// parts, then walls' parts ([`PairParts::split_spheres`], [`PairParts::split_walls`]).
+    fn split_chunks(&mut self, pairs: &NeighbourList, particles: usize, parts: usize) {
+        let keys = pairs.keys();
+        let (len, first_wall) = (keys.len(), keys.first_wall());
+        // the chunks that hold a pair of two spheres (the last may hold walls' pairs too)
+        let sphere_chunks = first_wall.div_ceil(PAIR_CHUNK).min(len.div_ceil(PAIR_CHUNK));
+        self.split_spheres(keys, particles, parts, sphere_chunks);
+        self.split_walls(keys, particles, sphere_chunks);
+    }
+
+    /// The chunks of spheres' pairs (the first `sphere_chunks`) in `parts` runs of about the
+    /// same cost (at most one per chunk), each chunk's with that of the walls' chunks whose
+    /// middle sphere is among its own ([`middle_sphere`]); each owns the particles from the
+    /// sphere of its first pair (the pairs are in key order: these do not decrease).
+    /// `first_chunk` and `first_particle` get the runs' starts, not yet the ends.
+    fn split_spheres(
+        &mut self,
+        keys: &PairKeys,
+        particles: usize,
+        parts: usize,
+        sphere_chunks: usize,
+    ) {
+        let (len, first_wall) = (keys.len(), keys.first_wall());
+        let first_sphere = |c: usize| pair_sphere(keys, c * PAIR_CHUNK, particles);
+        self.chunk_sphere.clear();
+        self.chunk_sphere.extend((0..sphere_chunks).map(first_sphere));
+        self.chunk_cost.clear();
+        self.chunk_cost.extend((0..sphere_chunks).map(|c| chunk_cost(c, len, first_wall)));
+        if sphere_chunks > 0 {
+            for c in sphere_chunks..len.div_ceil(PAIR_CHUNK) {
+                let i = middle_sphere(keys, c, particles);
+                let home = self.chunk_sphere.partition_point(|&first| first <= i).max(1) - 1;
+                self.chunk_cost[home] += chunk_cost(c, len, first_wall);
+            }
+        }
+        self.spheres = parts.clamp(1, sphere_chunks.max(1));
+        split_costs(&self.chunk_cost, self.spheres, &mut self.first_chunk);
+        self.first_chunk.pop();
+        self.first_particle.clear();
+        self.first_particle.push(0);
+        let first = |c: usize| self.chunk_sphere.get(c).copied().unwrap_or(particles);
+        let firsts = self.first_chunk[1..].iter().map(|&c| first(c));
+        self.first_particle.extend(firsts);
+    }
+
+    /// The walls' chunks (from chunk `sphere_chunks` on) in walls' parts: runs of chunks
+    /// whose middle spheres ([`middle_sphere`]) one spheres' part owns, each stepped with
+    /// that part (`wall_home`, `step_order`, `run_start`) and owning no particle; then the
+    /// ends of `first_chunk` and `first_particle`.
+    fn split_walls(&mut self, keys: &PairKeys, particles: usize, sphere_chunks: usize) {
+        let chunks = keys.len().div_ceil(PAIR_CHUNK);
+        let owners = &self.first_particle[..self.spheres];
+        self.wall_home.clear();
+        for c in sphere_chunks..chunks {
+            let i = middle_sphere(keys, c, particles);
+            let home = owners.partition_point(|&first| first <= i) - 1;
+            if self.wall_home.last() != Some(&home) {
+                self.wall_home.push(home);
+                self.first_chunk.push(c);
+            }
+        }
+        self.first_chunk.push(chunks);
+        let parts = self.spheres + self.wall_home.len();
+        self.first_particle.resize(parts + 1, particles);
+        let (spheres, wall_home) = (self.spheres, &self.wall_home);
+        let home = |p: usize| if p < spheres { p } else { wall_home[p - spheres] };
+        self.step_order.clear();
+        self.step_order.extend(0..parts);
+        self.step_order.sort_by_key(|&p| (home(p), p));
+        self.run_start.clear();
+        let order = &self.step_order;
+        self.run_start.extend((0..=spheres).map(|g| order.partition_point(|&p| home(p) < g)));
     }
 
     /// Whether the split is that of `pairs` into `parts` parts for `particles` particles
@@ -183,6 +305,17 @@ impl PairParts {
         }
     }
 
+    /// The number of spheres' parts: the parts that own particles, the first ones.
+    pub(crate) fn owners(&self) -> usize {
+        self.spheres
+    }
+
+    /// The parts in the order they are stepped, and per spheres' part where its run of
+    /// parts (itself, then the walls' parts that go with it) starts there, then the end.
+    pub(crate) fn runs(&self) -> (&[usize], &[usize]) {
+        (&self.step_order, &self.run_start)
+    }
+
     /// The number of parts.
     pub(crate) fn len(&self) -> usize {
         self.first_chunk.len().saturating_sub(1)
@@ -191,6 +324,22 @@ impl PairParts {
     /// Part `p`'s chunks of pairs.
     pub(crate) fn chunks(&self, p: usize) -> std::ops::Range<usize> {
         self.first_chunk[p]..self.first_chunk[p + 1]
+    }
+
+    /// Per spheres' part, the first particle it owns, then the particle count, when the pairs
+    /// were stepped in these parts at the last update ([`PairParts::set_in_use`]); empty if
+    /// not. The threads step the particles as they stepped these parts.
+    pub(crate) fn homes(&self) -> &[usize] {
+        if self.in_use {
+            &self.first_particle[..=self.spheres]
+        } else {
+            &[]
+        }
+    }
+
+    /// Says whether the last update of the pairs was in these parts.
+    pub(crate) fn set_in_use(&mut self, in_use: bool) {
+        self.in_use = in_use;
     }
 
     /// The particles part `p` owns.
@@ -208,7 +357,8 @@ impl PairParts {
 
 #[cfg(test)]
 mod tests {
-    use super::{split_by_cost, PairParts, PAIR_CHUNK, WALL_PAIR_COST};
+    use super::{middle_sphere, split_by_cost, PairParts, PAIR_CHUNK, WALL_PAIR_COST};
+    use crate::neighbours::NeighbourList;
     use proptest::prelude::*;
 
     /// The cost of chunks `a..b` of `len` pairs whose walls' start at `first_wall`.
@@ -259,5 +409,62 @@ mod tests {
         let owners: Vec<usize> = (0..10).map(|i| parts.owner(i)).collect();
         assert_eq!(owners, [0, 0, 0, 2, 2, 2, 2, 3, 3, 3]);
         assert!((0..10).all(|i| parts.particles(parts.owner(i)).contains(&i)));
+    }
+
+    /// A packing's list: columns of ten spheres (each on the one below), a floor under every
+    /// tenth sphere, a side wall along the first 3 000 and another at every hundredth. The
+    /// walls' parts are runs of walls' chunks whose middle spheres one spheres' part owns,
+    /// stepped in that part's run; every part is stepped once; the spheres' parts own the
+    /// particles in order, the walls' parts none.
+    #[test]
+    fn walls_pairs_go_with_the_part_that_owns_their_spheres() {
+        let n = 20_000u32;
+        let spheres: Vec<(u32, u32)> =
+            (0..n - 1).filter(|i| i % 10 != 9).map(|i| (i, i + 1)).collect();
+        let mut walls: Vec<(u32, u32)> = (0..n).filter(|i| i % 10 == 0).map(|i| (0, i)).collect();
+        walls.extend((0..3000).map(|i| (1, i)));
+        walls.extend((0..n).filter(|i| i % 100 == 0).map(|i| (2, i)));
+        let mut list = NeighbourList::default();
+        list.rebuild(spheres, &walls);
+        let (keys, particles) = (list.keys(), n as usize);
+        let chunks = keys.len().div_ceil(PAIR_CHUNK);
+        let sphere_chunks = keys.first_wall().div_ceil(PAIR_CHUNK);
+        let mut parts = PairParts::default();
+        parts.split(&list, particles, 4, |_| &[]);
+        let owners = parts.owners();
+        assert_eq!(owners, 4);
+        assert!(parts.len() > owners + 1, "the walls' chunks in several parts: {}", parts.len());
+        // the parts cover the chunks in order: the spheres' first, then the walls'
+        assert_eq!(parts.chunks(0).start, 0);
+        assert_eq!(parts.chunks(parts.len() - 1).end, chunks);
+        assert!((1..parts.len()).all(|p| parts.chunks(p).start == parts.chunks(p - 1).end));
+        assert_eq!(parts.chunks(owners).start, sphere_chunks);
+        // the spheres' parts own the particles in order, the walls' parts none
+        assert_eq!(parts.particles(0).start, 0);
+        assert_eq!(parts.particles(owners - 1).end, particles);
+        assert!((owners..parts.len()).all(|p| parts.particles(p).is_empty()));
+        // each run: its spheres' part, then walls' parts whose chunks' spheres it owns
+        let (order, runs) = parts.runs();
+        assert_eq!(runs.len(), owners + 1);
+        assert_eq!(runs[owners], parts.len());
+        let mut seen = order.to_vec();
+        seen.sort_unstable();
+        assert!(seen.iter().copied().eq(0..parts.len()), "each part once: {order:?}");
+        for g in 0..owners {
+            let run = &order[runs[g]..runs[g + 1]];
+            assert_eq!(run[0], g, "run {g}: {run:?}");
+            assert!(run.windows(2).all(|w| w[0] < w[1]), "run {g} in part order: {run:?}");
+            for &q in &run[1..] {
+                for c in parts.chunks(q) {
+                    assert_eq!(parts.owner(middle_sphere(keys, c, particles)), g, "chunk {c}");
+                }
+            }
+        }
+        // the leapfrog's homes: the spheres' parts' first particles, once the parts were used
+        assert!(parts.homes().is_empty());
+        parts.set_in_use(true);
+        let homes: Vec<usize> =
+            (0..owners).map(|p| parts.particles(p).start).chain([particles]).collect();
+        assert_eq!(parts.homes(), homes);
     }
 }

@@ -20,6 +20,7 @@ use crate::pair_store::{BlockContacts, BLOCK};
 use flexdem_elements::virtual_sphere::{Feature, Kinematics, NodeLoad};
 use flexdem_elements::Model;
 use flexdem_geom::{Real, Vec3};
+use smallvec::SmallVec;
 
 /// The parts' [`EmitLoads`]: the loads of a pair on a particle its part sums added to it as
 /// they come, on one summed after the parts
@@ -111,7 +112,7 @@ impl NeighbourList {
         let pass = PassInputs::new(model, &k, self.keys.first_wall(), dt);
         scratch.position.resize(self.keys.len(), 0);
         let chunks = chunks_for(&mut scratch.chunks, self.keys.len());
-        let lists = parts.len() * parts.len();
+        let lists = parts.len() * parts.owners();
         if scratch.deferred.len() != lists {
             scratch.deferred.resize_with(lists, Vec::new);
         }
@@ -126,12 +127,19 @@ impl NeighbourList {
             torque: &mut *torque,
             deferred: &mut scratch.deferred,
         };
-        step_parts(&shared, 0..parts.len(), inputs);
+        step_in_runs(&shared, parts, inputs);
         add_deferred(parts, force, torque, &scratch.deferred);
         scratch.deferred.iter_mut().for_each(trim);
         self.finish_update(scratch, ended_dissipation)
     }
 }
+
+/// Parts' inputs with their part, on the stack up to [`PARTS_ON_STACK`] parts.
+type Parts<'a> = SmallVec<[(usize, PartInputs<'a>); PARTS_ON_STACK]>;
+
+/// Parts whose inputs a step keeps on the stack (8 spheres' parts at 2 threads and the
+/// walls' parts: 15 in the packing of 10⁵ spheres; 136 bytes each).
+const PARTS_ON_STACK: usize = 32;
 
 /// What every part reads.
 struct PartShared<'a> {
@@ -142,6 +150,7 @@ struct PartShared<'a> {
 /// What some consecutive parts write: their pairs' ids, slots, blocks, outcomes' positions
 /// and chunks, their particles' sums and their lists of kept loads (one per owner part for
 /// each of these parts).
+#[derive(Default)]
 struct PartInputs<'a> {
     ids: &'a [(u32, u32)],
     slots: &'a mut [u32],
@@ -155,8 +164,8 @@ struct PartInputs<'a> {
 
 impl PartInputs<'_> {
     /// These parts' inputs split before their `chunk`-th chunk, `particle`-th particle and
-    /// `part`-th part (of `parts` in all).
-    fn split(self, chunk: usize, particle: usize, part: usize, parts: usize) -> (Self, Self) {
+    /// `part`-th part (`owners` lists of kept loads each).
+    fn split(self, chunk: usize, particle: usize, part: usize, owners: usize) -> (Self, Self) {
         let pairs = (chunk * PAIR_CHUNK).min(self.ids.len());
         let blocks = (chunk * (PAIR_CHUNK / BLOCK)).min(self.blocks.len());
         let (ids, ids_b) = self.ids.split_at(pairs);
@@ -166,7 +175,7 @@ impl PartInputs<'_> {
         let (chunks, chunks_b) = self.chunks.split_at_mut(chunk);
         let (force, force_b) = self.force.split_at_mut(particle);
         let (torque, torque_b) = self.torque.split_at_mut(particle);
-        let (deferred, deferred_b) = self.deferred.split_at_mut(part * parts);
+        let (deferred, deferred_b) = self.deferred.split_at_mut(part * owners);
         let a = PartInputs { ids, slots, blocks, positions, chunks, force, torque, deferred };
         let b = PartInputs {
             ids: ids_b,
@@ -182,19 +191,39 @@ impl PartInputs<'_> {
     }
 }
 
-/// Steps `parts` (consecutive), whose inputs are `inputs`: halved, the halves in parallel.
-fn step_parts(s: &PartShared<'_>, parts: std::ops::Range<usize>, inputs: PartInputs<'_>) {
-    if parts.len() <= 1 {
-        if !parts.is_empty() {
-            step_part(s, parts.start, inputs);
+/// Steps the parts of `parts` (whose inputs are `inputs`, in part order) by their runs
+/// ([`PairParts::runs`], [`step_runs`]).
+fn step_in_runs(s: &PartShared<'_>, parts: &PairParts, inputs: PartInputs<'_>) {
+    // each part's inputs, then in the order the parts are stepped (on the stack: they
+    // borrow this step's buffers)
+    let (order, runs) = parts.runs();
+    let mut each: Parts<'_> = SmallVec::with_capacity(parts.len());
+    let mut rest = inputs;
+    for p in 0..parts.len() {
+        let (chunks, particles) = (parts.chunks(p).len(), parts.particles(p).len());
+        let (a, b) = rest.split(chunks, particles, 1, parts.owners());
+        each.push((p, a));
+        rest = b;
+    }
+    let mut stepped: Parts<'_> =
+        order.iter().map(|&p| (p, std::mem::take(&mut each[p].1))).collect();
+    step_runs(s, runs, &mut stepped);
+}
+
+/// Steps the runs of parts `runs` (where each starts in `parts`, then the end; a run is a
+/// spheres' part and the walls' parts that go with it): halved, the halves in parallel, each
+/// run's parts in order on one thread.
+fn step_runs(s: &PartShared<'_>, runs: &[usize], parts: &mut [(usize, PartInputs<'_>)]) {
+    let count = runs.len() - 1;
+    if count <= 1 {
+        for (p, inputs) in parts.iter_mut() {
+            step_part(s, *p, std::mem::take(inputs));
         }
         return;
     }
-    let (first, mid) = (parts.start, parts.start + parts.len() / 2);
-    let chunk = s.parts.chunks(mid).start - s.parts.chunks(first).start;
-    let particle = s.parts.particles(mid).start - s.parts.particles(first).start;
-    let (a, b) = inputs.split(chunk, particle, mid - first, s.parts.len());
-    rayon::join(|| step_parts(s, first..mid, a), || step_parts(s, mid..parts.end, b));
+    let mid = count / 2;
+    let (a, b) = parts.split_at_mut(runs[mid] - runs[0]);
+    rayon::join(|| step_runs(s, &runs[..=mid], a), || step_runs(s, &runs[mid..], b));
 }
 
 /// Steps part `p` (its inputs: `inputs`) on this thread: its particles' sums zeroed and its
@@ -220,7 +249,7 @@ fn step_part(s: &PartShared<'_>, p: usize, inputs: PartInputs<'_>) {
 }
 
 /// Adds to `force` and `torque` (one entry per particle) the loads the parts kept
-/// (`deferred`: part `q`'s list for owner `o` at `q·parts + o`), in parallel over the owner
+/// (`deferred`: part `q`'s list for owner `o` at `q·owners + o`), in parallel over the owner
 /// parts, each owner's lists in part order, each list in its order: the loads in key order.
 fn add_deferred(
     parts: &PairParts,
@@ -228,7 +257,7 @@ fn add_deferred(
     torque: &mut [Vec3],
     deferred: &[Vec<DeferredLoad>],
 ) {
-    add_owners(parts, 0..parts.len(), force, torque, deferred);
+    add_owners(parts, 0..parts.owners(), force, torque, deferred);
 }
 
 /// [`add_deferred`] for owners `owners` (consecutive), whose particles' sums are `force` and
@@ -254,7 +283,7 @@ fn add_owners(
     let Some(o) = owners.clone().next() else { return };
     let first_particle = parts.particles(o).start;
     for q in 0..parts.len() {
-        for l in &deferred[q * parts.len() + o] {
+        for l in &deferred[q * parts.owners() + o] {
             let k = l.particle as usize - first_particle;
             force[k] += l.force;
             torque[k] += l.torque;

@@ -285,6 +285,8 @@ impl Simulation {
         let (reach, flags) = (Some(&pipeline.collider.reach[..]), &mut pipeline.step_flags);
         let chunk_reach = &pipeline.collider.chunk_reach[..];
         let checks = &mut Checks { reach, chunk_reach, verlet, flags };
+        // the threads step the particles as they stepped their pairs
+        let homes = pipeline.contacts.pair_parts.homes();
         let (mut work, found) = leapfrog_step_checked(
             &mut self.state.model.particles,
             &pipeline.force,
@@ -292,6 +294,7 @@ impl Simulation {
             &step,
             &mut pipeline.step_work,
             checks,
+            homes,
         );
         pipeline.moved_beyond = watched.then_some(found.beyond);
         if watched {
