@@ -90,7 +90,7 @@ fn mixed_contact_lists_give_the_same_results_with_one_and_two_threads() {
 }
 
 /// The bench's packing of about 12 000 spheres (35 × 35 columns of 10 in a box of five
-/// walls: about 37 000 candidate pairs, 10 chunks) with a steel net pinned at its corners
+/// walls: about 37 000 candidate pairs, 19 chunks) with a steel net pinned at its corners
 /// lying on the top layer: sphere pairs, walls' pairs and the net's general contacts with
 /// the top spheres, so that with more than one thread the pairs are stepped in parts and
 /// some spheres' loads are summed in their part, some after it from the parts' lists (walls'
@@ -111,7 +111,8 @@ fn packing_under_a_net(clearance: Real) -> Simulation {
 }
 
 /// Spheres in a box under a net: positions, velocities and contact forces bit-identical with
-/// 1, 2 and 3 threads (the pairs stepped in one pass, in 8 parts and in 10).
+/// 1, 2 and 3 threads (the pairs stepped in one pass, and in 8 and 12 spheres' parts with
+/// the walls' parts stepped with them).
 #[test]
 fn a_packing_under_a_net_does_not_depend_on_the_thread_count() {
     let run = |threads: usize| {

@@ -175,8 +175,16 @@ impl ContactPipeline {
             parts.with_general(index.has_general(), |i| !index.general_entries(i).is_empty());
             parts.set_in_use(true);
             let scratch = &mut self.pairs;
-            let report =
-                contacts.pairs.update_in_parts(model, dt, scratch, ended, parts, force, torque);
+            let room = &mut self.part_inputs;
+            let report = contacts.pairs.update_in_parts(
+                model,
+                dt,
+                scratch,
+                ended,
+                (parts, room),
+                force,
+                torque,
+            );
             if index.has_general() {
                 let (list, loads) = (&contacts.list, &self.loads);
                 let sum_by = Some(parts.sum_by());

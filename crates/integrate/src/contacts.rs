@@ -18,6 +18,7 @@ use crate::pair_parts::PairParts;
 use crate::pair_passes::PairScratch;
 use crate::parallel::MAX_CHUNKS_PER_TASK;
 use crate::parallel::{MIN_PARALLEL_CHEAP, MIN_PARALLEL_COSTLY};
+use crate::part_step::PartsRoom;
 use crate::prefilter::{proven_apart, write_hull, Hull};
 use crate::touchings::{match_sorted, Touchings};
 use flexdem_contact::{ContactDamping, LinkKinematicsMode};
@@ -56,6 +57,8 @@ pub(crate) struct ContactPipeline {
     pub(crate) load_index: LoadIndex,
     /// The free spheres' pairs split into parts for their parallel update (`pair_parts.rs`).
     pub(crate) pair_parts: PairParts,
+    /// The memory of the list of the parts' inputs at that update (`part_step.rs`).
+    pub(crate) part_inputs: PartsRoom,
     /// The links' kinematics, which say how a virtual sphere on a connection turns
     /// (`Kinematics::link_mode`).
     pub(crate) link_mode: LinkKinematicsMode,

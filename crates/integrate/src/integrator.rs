@@ -211,7 +211,7 @@ fn home_chunk(i: usize) -> usize {
 /// Steps `all` (the particles of chunks `out.first..`, in chunks of [`CHUNK`]) part by part,
 /// `homes` the first particle of each part then the end, each part from the chunk nearest
 /// its first particle ([`home_chunk`]): the parts halved and the halves in
-/// parallel, as `part_step::step_parts` halves the pairs' parts, so that the thread that
+/// parallel, as `part_step::step_runs` halves the pairs' parts' runs, so that the thread that
 /// summed a part's loads (and read its particles) most often steps them too; within a part,
 /// its chunks in parallel in tasks of at most [`MAX_CHUNKS_PER_TASK`]. (Split by rayon alone
 /// over all the chunks, the halves' border fell 6 chunks from the parts', the packing of 10⁵

@@ -1,24 +1,25 @@
 //! The candidate pairs split into parts for the parallel update (issue 14): each part a run
-//! of whole chunks of pairs, stepped on one thread in key order, and owning the particles
-//! from the first sphere of its first pair to the first of the next part's. A particle whose
-//! loads all come from pairs of two spheres of its owner's part has them summed there as
-//! they come, as the one-thread pass sums them: from zero, in key order. The parts keep the
-//! loads on the other particles, in pair order, in lists by the particle's owner
-//! (`part_step.rs`); once all are done, each owner's lists are added in part order, which is
-//! key order: after the part's sum for a particle whose only other loads are walls' (whose
-//! pairs come last in key order, after every pair of two spheres), onto zero for one loaded
-//! from several parts. A particle that a general contact loads is summed from zero over all
-//! its entries from the index (`gather.rs`). Every particle's sum is the same additions in the
-//! same order whatever the split, so the split may follow the thread count.
+//! of whole chunks of pairs, stepped on one thread in key order; a spheres' part owns the
+//! particles from the first sphere of its first pair to the first of the next one's (a
+//! walls' part, below, owns none). A particle whose loads all come from pairs of two spheres of
+//! its owner's part has them summed there as they come, as the one-thread pass sums them: from
+//! zero, in key order. The parts keep the loads on the other particles, in pair order, in lists
+//! by the particle's owner (`part_step.rs`); once all are done, each owner's lists are added in
+//! part order, which is key order: after the part's sum for a particle whose only other loads
+//! are walls' (whose pairs come last in key order, after every pair of two spheres), onto zero
+//! for one loaded from several parts. A particle that a general contact loads is summed from
+//! zero over all its entries from the index (`gather.rs`). Every particle's sum is the same
+//! additions in the same order whatever the split, so the split may follow the thread count.
 //!
-//! The walls' pairs (after the spheres' in key order) are split into parts of their own, each
-//! a run of chunks whose spheres one spheres' part owns, and stepped with that part, on its
-//! thread ([`PairParts::runs`]): a sphere's wall is then met by the thread that steps the
-//! sphere's other pairs and its leapfrog. (In one part, the packing's floor, which every
-//! tenth sphere of 10⁵ touches, had one thread read and load half of the spheres of the
-//! other at every step: on a host that put the two cores on two AMD core complexes, where a
-//! line one core reads and the other writes goes through the I/O die, the other thread's
-//! leapfrog took 1.5 times as long; `bench/README.md`, twenty-third session.)
+//! When the spheres' pairs fill at least a chunk per part asked for, the walls' pairs
+//! (after the spheres' in key order) are split into parts of their own, each a run of
+//! chunks whose spheres one spheres' part owns, and stepped with that part, on its thread
+//! ([`PairParts::runs`]): a sphere's wall is then met by the thread that steps the sphere's
+//! other pairs and its leapfrog. (In one part, the packing's floor, which every tenth
+//! sphere of 10⁵ touches, had one thread read and load half of the spheres of the other at
+//! every step: on a host that put the two cores on two AMD core complexes, where a line one
+//! core reads and the other writes goes through the I/O die, the other thread's leapfrog
+//! took 1.5 times as long; `bench/README.md`, twenty-third session.)
 //!
 //! With two parts of a packing of 10⁵ spheres in Morton order, 1 % of the spheres get loads
 //! from both parts and 14 % touch a wall: the gather of every particle's loads, which the
@@ -45,7 +46,7 @@ pub(crate) enum SumBy {
     Gather,
 }
 
-/// Parts per thread: more parts share the work better between threads when one is slowed
+/// Spheres' parts per thread: more parts share the work better between threads when one is slowed
 /// (see `parallel::MAX_CHUNKS_PER_TASK`), and put more particles on the parts' borders
 /// (packing of 10⁵ spheres with 8 parts: 7 % of the spheres loaded from several). With 2 per
 /// thread, 2 threads: the same fastest step as with 4 (4.800 against 4.783 ms), but a median
@@ -116,7 +117,8 @@ fn split_by_cost(len: usize, first_wall: usize, parts: usize, first_chunk: &mut 
 /// summed (nothing here is saved).
 #[derive(Clone, Debug, Default)]
 pub(crate) struct PairParts {
-    /// The neighbour list generation, particle count and part count of the split.
+    /// The neighbour list generation, particle count and count of parts asked for, of the
+    /// split.
     built_for: Option<(u64, usize, usize)>,
     /// Per part, its first chunk of [`PAIR_CHUNK`] pairs; then the number of chunks. The
     /// spheres' parts come first, then the walls' parts.
@@ -126,13 +128,12 @@ pub(crate) struct PairParts {
     first_particle: Vec<usize>,
     /// The number of spheres' parts: the parts that own particles.
     spheres: usize,
-    /// Per walls' part, the spheres' part it goes with (the owner of its first chunk's
-    /// middle sphere).
-    wall_home: Vec<usize>,
-    /// The parts in the order they are stepped: by the spheres' part each goes with (its
-    /// own for a spheres' part), then in order.
-    step_order: Vec<usize>,
-    /// Per spheres' part, where its run starts in `step_order`; then the number of parts.
+    /// Per part, the spheres' part it is stepped with: its own for a spheres' part, for a
+    /// walls' part the owner of its chunks' middle spheres.
+    home: Vec<usize>,
+    /// Per spheres' part, where its run (itself, then the walls' parts stepped with it)
+    /// starts in the order the parts are stepped (by `home`, then in part order); then the
+    /// number of parts.
     run_start: Vec<usize>,
     /// Per chunk of spheres' pairs, its cost with that of the walls' chunks its spheres go
     /// with (the split's buffer).
@@ -151,8 +152,9 @@ pub(crate) struct PairParts {
 }
 
 impl PairParts {
-    /// Splits the candidate pairs of `pairs` into `parts` parts (at most one per chunk) for
-    /// `particles` particles, unless done already; `entries(i)` are particle `i`'s entries
+    /// Splits the candidate pairs of `pairs` into `parts` spheres' parts (at most one per
+    /// chunk) and the walls' parts ([`PairParts::split_chunks`]) for `particles` particles,
+    /// unless done already; `entries(i)` are particle `i`'s entries
     /// among the pairs in pair order (`2·n + side`, `gather::LoadIndex`).
     pub(crate) fn split<'a>(
         &mut self,
@@ -199,16 +201,21 @@ impl PairParts {
         let keys = pairs.keys();
         let (len, first_wall) = (keys.len(), keys.first_wall());
         // the chunks that hold a pair of two spheres (the last may hold walls' pairs too)
-        let sphere_chunks = first_wall.div_ceil(PAIR_CHUNK).min(len.div_ceil(PAIR_CHUNK));
-        self.split_spheres(keys, particles, parts, sphere_chunks);
-        self.split_walls(keys, particles, sphere_chunks);
+        let chunks = len.div_ceil(PAIR_CHUNK);
+        let sphere_chunks = first_wall.div_ceil(PAIR_CHUNK).min(chunks);
+        // too few spheres' chunks for the parts asked (spheres sparse between walls): every
+        // chunk is split by cost, as the spheres' are, and no walls' part is made
+        let split = if sphere_chunks >= parts { sphere_chunks } else { chunks };
+        self.split_spheres(keys, particles, parts, split);
+        self.split_walls(keys, particles, split);
     }
 
-    /// The chunks of spheres' pairs (the first `sphere_chunks`) in `parts` runs of about the
-    /// same cost (at most one per chunk), each chunk's with that of the walls' chunks whose
-    /// middle sphere is among its own ([`middle_sphere`]); each owns the particles from the
-    /// sphere of its first pair (the pairs are in key order: these do not decrease).
-    /// `first_chunk` and `first_particle` get the runs' starts, not yet the ends.
+    /// The first `sphere_chunks` chunks (those of spheres' pairs, or all) in `parts` runs of
+    /// about the same cost (at most one per chunk), each chunk's with that of the walls'
+    /// chunks after them whose middle sphere is among its own ([`middle_sphere`]); each owns
+    /// the particles from the sphere of its first pair, none from a walls' pair (the pairs
+    /// are in key order: these do not decrease). `first_chunk` and `first_particle` get the
+    /// runs' starts, not yet the ends.
     fn split_spheres(
         &mut self,
         keys: &PairKeys,
@@ -217,7 +224,15 @@ impl PairParts {
         sphere_chunks: usize,
     ) {
         let (len, first_wall) = (keys.len(), keys.first_wall());
-        let first_sphere = |c: usize| pair_sphere(keys, c * PAIR_CHUNK, particles);
+        // (a chunk that starts with a walls' pair, when all are split so: from the end)
+        let first_sphere = |c: usize| {
+            let n = c * PAIR_CHUNK;
+            if n < first_wall {
+                pair_sphere(keys, n, particles)
+            } else {
+                particles
+            }
+        };
         self.chunk_sphere.clear();
         self.chunk_sphere.extend((0..sphere_chunks).map(first_sphere));
         self.chunk_cost.clear();
@@ -241,31 +256,30 @@ impl PairParts {
 
     /// The walls' chunks (from chunk `sphere_chunks` on) in walls' parts: runs of chunks
     /// whose middle spheres ([`middle_sphere`]) one spheres' part owns, each stepped with
-    /// that part (`wall_home`, `step_order`, `run_start`) and owning no particle; then the
+    /// that part (`home`, `run_start`) and owning no particle; then the
     /// ends of `first_chunk` and `first_particle`.
     fn split_walls(&mut self, keys: &PairKeys, particles: usize, sphere_chunks: usize) {
         let chunks = keys.len().div_ceil(PAIR_CHUNK);
+        self.home.clear();
+        self.home.extend(0..self.spheres);
         let owners = &self.first_particle[..self.spheres];
-        self.wall_home.clear();
         for c in sphere_chunks..chunks {
             let i = middle_sphere(keys, c, particles);
             let home = owners.partition_point(|&first| first <= i) - 1;
-            if self.wall_home.last() != Some(&home) {
-                self.wall_home.push(home);
+            if self.home.len() == self.spheres || self.home.last() != Some(&home) {
+                self.home.push(home);
                 self.first_chunk.push(c);
             }
         }
         self.first_chunk.push(chunks);
-        let parts = self.spheres + self.wall_home.len();
+        let parts = self.home.len();
         self.first_particle.resize(parts + 1, particles);
-        let (spheres, wall_home) = (self.spheres, &self.wall_home);
-        let home = |p: usize| if p < spheres { p } else { wall_home[p - spheres] };
-        self.step_order.clear();
-        self.step_order.extend(0..parts);
-        self.step_order.sort_by_key(|&p| (home(p), p));
+        // the runs: the parts by home, then in part order
+        let home = &self.home;
         self.run_start.clear();
-        let order = &self.step_order;
-        self.run_start.extend((0..=spheres).map(|g| order.partition_point(|&p| home(p) < g)));
+        self.run_start
+            .extend((0..self.spheres).map(|g| (0..parts).filter(|&p| home[p] < g).count()));
+        self.run_start.push(parts);
     }
 
     /// Whether the split is that of `pairs` into `parts` parts for `particles` particles
@@ -310,13 +324,14 @@ impl PairParts {
         self.spheres
     }
 
-    /// The parts in the order they are stepped, and per spheres' part where its run of
-    /// parts (itself, then the walls' parts that go with it) starts there, then the end.
+    /// Per part, the spheres' part it is stepped with (its run); and per run where it starts
+    /// in the order the parts are stepped (by run, then in part order), then the number of
+    /// parts.
     pub(crate) fn runs(&self) -> (&[usize], &[usize]) {
-        (&self.step_order, &self.run_start)
+        (&self.home, &self.run_start)
     }
 
-    /// The number of parts.
+    /// The number of parts, the walls' included.
     pub(crate) fn len(&self) -> usize {
         self.first_chunk.len().saturating_sub(1)
     }
@@ -351,7 +366,7 @@ impl PairParts {
     /// particle is at most `i` (a part that owns none starts where the next does).
     #[inline]
     pub(crate) fn owner(&self, i: usize) -> usize {
-        self.first_particle.partition_point(|&first| first <= i) - 1
+        self.first_particle[..=self.spheres].partition_point(|&first| first <= i) - 1
     }
 }
 
@@ -405,7 +420,8 @@ mod tests {
     /// A particle's owner is the part whose particles hold it, past parts that own none.
     #[test]
     fn a_particle_is_owned_by_the_part_whose_range_holds_it() {
-        let parts = PairParts { first_particle: vec![0, 3, 3, 7, 10], ..Default::default() };
+        let parts =
+            PairParts { first_particle: vec![0, 3, 3, 7, 10], spheres: 4, ..Default::default() };
         let owners: Vec<usize> = (0..10).map(|i| parts.owner(i)).collect();
         assert_eq!(owners, [0, 0, 0, 2, 2, 2, 2, 3, 3, 3]);
         assert!((0..10).all(|i| parts.particles(parts.owner(i)).contains(&i)));
@@ -444,27 +460,52 @@ mod tests {
         assert_eq!(parts.particles(owners - 1).end, particles);
         assert!((owners..parts.len()).all(|p| parts.particles(p).is_empty()));
         // each run: its spheres' part, then walls' parts whose chunks' spheres it owns
-        let (order, runs) = parts.runs();
-        assert_eq!(runs.len(), owners + 1);
-        assert_eq!(runs[owners], parts.len());
-        let mut seen = order.to_vec();
-        seen.sort_unstable();
-        assert!(seen.iter().copied().eq(0..parts.len()), "each part once: {order:?}");
+        let (home, runs) = parts.runs();
+        assert_eq!((home.len(), runs.len()), (parts.len(), owners + 1));
+        assert_eq!((runs[0], runs[owners]), (0, parts.len()));
         for g in 0..owners {
-            let run = &order[runs[g]..runs[g + 1]];
-            assert_eq!(run[0], g, "run {g}: {run:?}");
-            assert!(run.windows(2).all(|w| w[0] < w[1]), "run {g} in part order: {run:?}");
-            for &q in &run[1..] {
-                for c in parts.chunks(q) {
-                    assert_eq!(parts.owner(middle_sphere(keys, c, particles)), g, "chunk {c}");
-                }
-            }
+            assert_eq!(home[g], g);
+            let size = (0..parts.len()).filter(|&p| home[p] == g).count();
+            assert_eq!(runs[g + 1] - runs[g], size, "run {g}");
         }
+        for q in owners..parts.len() {
+            for c in parts.chunks(q) {
+                assert_eq!(parts.owner(middle_sphere(keys, c, particles)), home[q], "chunk {c}");
+            }
+            // a walls' part is a run of chunks of one home: the next has another
+            assert!(q + 1 == parts.len() || home[q + 1] != home[q], "part {q}");
+        }
+        assert!(
+            (owners..parts.len()).any(|q| home[q] != owners - 1),
+            "walls' parts on several homes"
+        );
         // the leapfrog's homes: the spheres' parts' first particles, once the parts were used
         assert!(parts.homes().is_empty());
         parts.set_in_use(true);
         let homes: Vec<usize> =
             (0..owners).map(|p| parts.particles(p).start).chain([particles]).collect();
         assert_eq!(parts.homes(), homes);
+    }
+
+    /// Spheres sparse between walls (fewer spheres' chunks than parts asked for): every
+    /// chunk is split by cost as the spheres' are, and no walls' part is made, so that the
+    /// walls' pairs still spread over the threads.
+    #[test]
+    fn sparse_spheres_split_the_walls_pairs_with_theirs() {
+        let n = 20_000u32;
+        let spheres: Vec<(u32, u32)> =
+            (0..n - 1).filter(|i| i % 20 == 0).map(|i| (i, i + 1)).collect();
+        let walls: Vec<(u32, u32)> = (0..2).flat_map(|w| (0..n).map(move |i| (w, i))).collect();
+        let mut list = NeighbourList::default();
+        list.rebuild(spheres, &walls);
+        let mut parts = PairParts::default();
+        parts.split(&list, n as usize, 8, |_| &[]);
+        assert_eq!(parts.owners(), 8);
+        assert_eq!(parts.len(), 8, "no walls' part");
+        assert_eq!(parts.chunks(7).end, list.keys().len().div_ceil(PAIR_CHUNK));
+        // the parts after the spheres' pairs own no particle; the owners cover them all
+        assert_eq!(parts.particles(0).start, 0);
+        assert!((0..n as usize).all(|i| parts.particles(parts.owner(i)).contains(&i)));
+        assert!(parts.particles(7).is_empty());
     }
 }

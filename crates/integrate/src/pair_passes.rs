@@ -132,7 +132,7 @@ pub(crate) struct PairScratch {
     /// 0 before any): its records are theirs.
     generation: u64,
     /// The loads the parts kept for the particles they do not sum at the last update in
-    /// parts (`part_step.rs`): part `q`'s for the particles of part `o` at `q·parts + o`.
+    /// parts (`part_step.rs`): part `q`'s for the particles of part `o` at `q·owners + o`.
     pub(crate) deferred: Vec<Vec<DeferredLoad>>,
 }
 
@@ -172,7 +172,7 @@ impl LastUpdate<'_> {
 /// the others. The first step of a packing makes all its contacts at once, and the lists of
 /// fresh pairs held 26 bytes per sphere for the rest of the run (with a floor of 1024 places
 /// whatever their size, the new pairs' stiffness shares, 152 bytes each, kept 220 bytes per
-/// sphere of the packing of 10⁵ spheres in its 75 chunks).
+/// sphere of the packing of 10⁵ spheres in its 75 chunks of 4096 pairs).
 pub(crate) fn trim<T>(buffer: &mut Vec<T>) {
     let floor = (2048 / std::mem::size_of::<T>().max(1)).max(1);
     let room = 2 * buffer.len().max(floor);

@@ -1,5 +1,5 @@
 //! The step of the candidate pairs in parts (`pair_parts.rs`,
-//! `NeighbourList::update_in_parts`): the parts in parallel, each one's chunks in order on
+//! `NeighbourList::update_in_parts`): the parts' runs in parallel, each part's chunks in order on
 //! one thread, which sums as they come the loads on the particles it owns and sums
 //! ([`SumBy::Part`], and [`SumBy::PartThenWalls`] but for its walls) and keeps the others'
 //! loads, in pair order, in one list per owner part ([`DeferredLoad`]); then, in parallel
@@ -20,7 +20,6 @@ use crate::pair_store::{BlockContacts, BLOCK};
 use flexdem_elements::virtual_sphere::{Feature, Kinematics, NodeLoad};
 use flexdem_elements::Model;
 use flexdem_geom::{Real, Vec3};
-use smallvec::SmallVec;
 
 /// The parts' [`EmitLoads`]: the loads of a pair on a particle its part sums added to it as
 /// they come, on one summed after the parts
@@ -91,9 +90,10 @@ impl EmitLoads for ToParts<'_> {
 }
 
 impl NeighbourList {
-    /// [`NeighbourList::update`] in the parts of `parts` (`pair_parts.rs`, `part_step.rs`):
-    /// the parts in parallel, each one's chunks in order on one thread, then the loads they
-    /// kept added. Writes in `force` and `torque` (one entry per particle) the sum of every
+    /// [`NeighbourList::update`] in the parts of `parts` (`pair_parts.rs`, `part_step.rs`;
+    /// `room` the memory of the list of their inputs):
+    /// the parts' runs in parallel, each part's chunks in order on one thread, then the loads
+    /// they kept added. Writes in `force` and `torque` (one entry per particle) the sum of every
     /// particle's pair loads in key order, except those the gather sums (`gather.rs`,
     /// [`SumBy::Gather`](crate::pair_parts::SumBy), zero here), whose pairs' outcomes it
     /// keeps. The same contacts, records and sums as `update`.
@@ -104,7 +104,7 @@ impl NeighbourList {
         dt: Real,
         scratch: &mut PairScratch,
         ended_dissipation: &mut Real,
-        parts: &PairParts,
+        (parts, room): (&PairParts, &mut PartsRoom),
         force: &mut [Vec3],
         torque: &mut [Vec3],
     ) -> BirthReport {
@@ -127,19 +127,30 @@ impl NeighbourList {
             torque: &mut *torque,
             deferred: &mut scratch.deferred,
         };
-        step_in_runs(&shared, parts, inputs);
+        step_in_runs(&shared, parts, inputs, room);
         add_deferred(parts, force, torque, &scratch.deferred);
         scratch.deferred.iter_mut().for_each(trim);
         self.finish_update(scratch, ended_dissipation)
     }
 }
 
-/// Parts' inputs with their part, on the stack up to [`PARTS_ON_STACK`] parts.
-type Parts<'a> = SmallVec<[(usize, PartInputs<'a>); PARTS_ON_STACK]>;
+/// The memory of the list of the parts' inputs, kept from step to step (in the contact
+/// pipeline): an empty list, so that a step allocates none.
+#[derive(Default)]
+pub(crate) struct PartsRoom(Vec<(usize, PartInputs<'static>)>);
 
-/// Parts whose inputs a step keeps on the stack (8 spheres' parts at 2 threads and the
-/// walls' parts: 15 in the packing of 10⁵ spheres; 136 bytes each).
-const PARTS_ON_STACK: usize = 32;
+impl Clone for PartsRoom {
+    /// Empty: a copy's first step makes its own.
+    fn clone(&self) -> Self {
+        PartsRoom::default()
+    }
+}
+
+impl std::fmt::Debug for PartsRoom {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "PartsRoom(room for {})", self.0.capacity())
+    }
+}
 
 /// What every part reads.
 struct PartShared<'a> {
@@ -192,12 +203,16 @@ impl PartInputs<'_> {
 }
 
 /// Steps the parts of `parts` (whose inputs are `inputs`, in part order) by their runs
-/// ([`PairParts::runs`], [`step_runs`]).
-fn step_in_runs(s: &PartShared<'_>, parts: &PairParts, inputs: PartInputs<'_>) {
-    // each part's inputs, then in the order the parts are stepped (on the stack: they
-    // borrow this step's buffers)
-    let (order, runs) = parts.runs();
-    let mut each: Parts<'_> = SmallVec::with_capacity(parts.len());
+/// ([`PairParts::runs`], [`step_runs`]). `room` is the list of the parts' inputs kept from
+/// step to step, empty: its memory serves again (the inputs borrow this step's buffers).
+fn step_in_runs(
+    s: &PartShared<'_>,
+    parts: &PairParts,
+    inputs: PartInputs<'_>,
+    room: &mut PartsRoom,
+) {
+    let (home, runs) = parts.runs();
+    let mut each: Vec<(usize, PartInputs<'_>)> = reuse(std::mem::take(&mut room.0));
     let mut rest = inputs;
     for p in 0..parts.len() {
         let (chunks, particles) = (parts.chunks(p).len(), parts.particles(p).len());
@@ -205,9 +220,18 @@ fn step_in_runs(s: &PartShared<'_>, parts: &PairParts, inputs: PartInputs<'_>) {
         each.push((p, a));
         rest = b;
     }
-    let mut stepped: Parts<'_> =
-        order.iter().map(|&p| (p, std::mem::take(&mut each[p].1))).collect();
-    step_runs(s, runs, &mut stepped);
+    // by run, then in part order (no allocation: the keys are distinct)
+    each.sort_unstable_by_key(|&(p, _)| (home[p], p));
+    step_runs(s, runs, &mut each);
+    each.clear();
+    room.0 = reuse(each);
+}
+
+/// An empty `Vec` of another lifetime with the memory of `v` (emptied): the same layout, so
+/// the collect is done in place and allocates nothing.
+fn reuse<'b>(mut v: Vec<(usize, PartInputs<'_>)>) -> Vec<(usize, PartInputs<'b>)> {
+    v.clear();
+    v.into_iter().map(|_| unreachable!("emptied")).collect()
 }
 
 /// Steps the runs of parts `runs` (where each starts in `parts`, then the end; a run is a
