@@ -210,19 +210,13 @@ impl PairParts {
         self.split_walls(keys, particles, split);
     }
 
-    /// The first `sphere_chunks` chunks (those of spheres' pairs, or all) in `parts` runs of
+    /// The first `costed` chunks (those of spheres' pairs, or all) in `parts` runs of
     /// about the same cost (at most one per chunk), each chunk's with that of the walls'
     /// chunks after them whose middle sphere is among its own ([`middle_sphere`]); each owns
     /// the particles from the sphere of its first pair, none from a walls' pair (the pairs
     /// are in key order: these do not decrease). `first_chunk` and `first_particle` get the
     /// runs' starts, not yet the ends.
-    fn split_spheres(
-        &mut self,
-        keys: &PairKeys,
-        particles: usize,
-        parts: usize,
-        sphere_chunks: usize,
-    ) {
+    fn split_spheres(&mut self, keys: &PairKeys, particles: usize, parts: usize, costed: usize) {
         let (len, first_wall) = (keys.len(), keys.first_wall());
         // (a chunk that starts with a walls' pair, when all are split so: from the end)
         let first_sphere = |c: usize| {
@@ -234,17 +228,17 @@ impl PairParts {
             }
         };
         self.chunk_sphere.clear();
-        self.chunk_sphere.extend((0..sphere_chunks).map(first_sphere));
+        self.chunk_sphere.extend((0..costed).map(first_sphere));
         self.chunk_cost.clear();
-        self.chunk_cost.extend((0..sphere_chunks).map(|c| chunk_cost(c, len, first_wall)));
-        if sphere_chunks > 0 {
-            for c in sphere_chunks..len.div_ceil(PAIR_CHUNK) {
+        self.chunk_cost.extend((0..costed).map(|c| chunk_cost(c, len, first_wall)));
+        if costed > 0 {
+            for c in costed..len.div_ceil(PAIR_CHUNK) {
                 let i = middle_sphere(keys, c, particles);
                 let home = self.chunk_sphere.partition_point(|&first| first <= i).max(1) - 1;
                 self.chunk_cost[home] += chunk_cost(c, len, first_wall);
             }
         }
-        self.spheres = parts.clamp(1, sphere_chunks.max(1));
+        self.spheres = parts.clamp(1, costed.max(1));
         split_costs(&self.chunk_cost, self.spheres, &mut self.first_chunk);
         self.first_chunk.pop();
         self.first_particle.clear();

@@ -228,7 +228,9 @@ fn step_in_runs(
 }
 
 /// An empty `Vec` of another lifetime with the memory of `v` (emptied): the same layout, so
-/// the collect is done in place and allocates nothing.
+/// the standard library collects in place and allocates nothing (its in-place collect is not
+/// a documented guarantee; without it this allocates, nothing worse: the allocation test at
+/// 2 threads counted 0.095 allocations per step of the packing, as at one thread).
 fn reuse<'b>(mut v: Vec<(usize, PartInputs<'_>)>) -> Vec<(usize, PartInputs<'b>)> {
     v.clear();
     v.into_iter().map(|_| unreachable!("emptied")).collect()
