@@ -11,6 +11,8 @@ use crate::contact_list::Contacts;
 use crate::contacts::ContactPipeline;
 use crate::dashpots::dashpot_power;
 use crate::gather::{fits_codes, load_nodes, write_general_loads, NO_NODE};
+use crate::home_loops::{by_runs, chunk_home_runs, shared};
+use crate::homes::Homes;
 use crate::neighbours::{merged, Pick, Sink};
 use crate::pair_parts::PARTS_PER_THREAD;
 use crate::parallel::{MIN_PARALLEL_CHEAP, MIN_PARALLEL_COSTLY};
@@ -19,6 +21,23 @@ use flexdem_elements::virtual_sphere::{distribute_force_as, Kinematics, NodeLoad
 use flexdem_elements::Model;
 use flexdem_geom::{Real, Vec3};
 use rayon::prelude::*;
+
+/// Contacts per chunk when the law's contacts are shared by home (the runs change home
+/// between chunks).
+const LAW_CHUNK: usize = 256;
+
+/// Contacts, their loads, the loads' particles and their energy terms, cut by home.
+type LawPiece<'a> =
+    (&'a mut [Contact], (&'a mut [[NodeLoad; 6]], (&'a mut [[u32; 6]], &'a mut [(Real, Real)])));
+
+/// A [`LawPiece`] with the dashpots' loads.
+type DampedPiece<'a> = (
+    &'a mut [Contact],
+    (
+        &'a mut [[NodeLoad; 6]],
+        (&'a mut [[u32; 6]], (&'a mut [(Real, Real)], &'a mut [[NodeLoad; 6]])),
+    ),
+);
 
 /// Below this many particles, force and torque are zeroed on one thread.
 const MIN_PARALLEL_ZERO: usize = 8 * MIN_PARALLEL_CHEAP;
@@ -35,6 +54,7 @@ impl ContactPipeline {
         dt: Real,
         force: &mut [Vec3],
         torque: &mut [Vec3],
+        homes: &Homes,
     ) -> BirthReport {
         let p = &model.particles;
         // with more than one thread the loads' sums are written per particle (`gather.rs`),
@@ -78,41 +98,80 @@ impl ContactPipeline {
             *energy = (c.forces.elastic_energy, c.state.dissipated_friction);
             (vs1, vs2, g)
         };
+        // by the home of each chunk's first contact's first particle (`home_loops.rs`)
+        let shared_homes = shared(homes, model).then_some(homes);
+        let len = contacts.list.len();
+        let firsts = &contacts.list;
+        let home = |c: usize| {
+            let first = firsts[c * LAW_CHUNK].site1.nodes[0] as usize;
+            shared_homes.map_or(0, |h| h.home_of(first))
+        };
+        let runs = chunk_home_runs(len, LAW_CHUNK, shared_homes, home);
         if self.damped {
             // the dashpots' force alone shared as the total is, for its power after the kick
             self.dashpot_loads.resize(contacts.list.len(), zero);
-            contacts
-                .list
-                .par_iter_mut()
-                .zip(self.loads.par_iter_mut())
-                .zip(self.load_nodes.par_iter_mut())
-                .zip(self.energies.par_iter_mut())
-                .zip(self.dashpot_loads.par_iter_mut())
-                .with_min_len(MIN_PARALLEL_COSTLY)
-                .for_each(|((((c, loads), nodes), energy), dashpot)| {
-                    let (vs1, vs2, g) = update(c, loads, nodes, energy);
-                    let f = c.forces.dashpot_force;
-                    if f == Vec3::zeros() {
-                        *dashpot = zero;
-                        return;
-                    }
-                    let l1 =
-                        distribute_force_as(mode, &c.site1, &p.pos, &vs1.center, &g.point, &(-f));
-                    let l2 = distribute_force_as(mode, &c.site2, &p.pos, &vs2.center, &g.point, &f);
-                    dashpot[..3].copy_from_slice(&l1);
-                    dashpot[3..].copy_from_slice(&l2);
-                });
+            let law =
+                |_: usize, (list, (loads, (nodes, (energies, dashpots)))): DampedPiece<'_>| {
+                    list.par_iter_mut()
+                        .zip(loads.par_iter_mut())
+                        .zip(nodes.par_iter_mut())
+                        .zip(energies.par_iter_mut())
+                        .zip(dashpots.par_iter_mut())
+                        .with_min_len(MIN_PARALLEL_COSTLY)
+                        .for_each(|((((c, loads), nodes), energy), dashpot)| {
+                            let (vs1, vs2, g) = update(c, loads, nodes, energy);
+                            let f = c.forces.dashpot_force;
+                            if f == Vec3::zeros() {
+                                *dashpot = zero;
+                                return;
+                            }
+                            let l1 = distribute_force_as(
+                                mode,
+                                &c.site1,
+                                &p.pos,
+                                &vs1.center,
+                                &g.point,
+                                &(-f),
+                            );
+                            let l2 = distribute_force_as(
+                                mode,
+                                &c.site2,
+                                &p.pos,
+                                &vs2.center,
+                                &g.point,
+                                &f,
+                            );
+                            dashpot[..3].copy_from_slice(&l1);
+                            dashpot[3..].copy_from_slice(&l2);
+                        });
+                };
+            let all = (
+                &mut contacts.list[..],
+                (
+                    &mut self.loads[..],
+                    (
+                        &mut self.load_nodes[..],
+                        (&mut self.energies[..], &mut self.dashpot_loads[..]),
+                    ),
+                ),
+            );
+            by_runs(all, len, runs, &law);
         } else {
-            contacts
-                .list
-                .par_iter_mut()
-                .zip(self.loads.par_iter_mut())
-                .zip(self.load_nodes.par_iter_mut())
-                .zip(self.energies.par_iter_mut())
-                .with_min_len(MIN_PARALLEL_COSTLY)
-                .for_each(|(((c, loads), nodes), energy)| {
-                    update(c, loads, nodes, energy);
-                });
+            let law = |_: usize, (list, (loads, (nodes, energies))): LawPiece<'_>| {
+                list.par_iter_mut()
+                    .zip(loads.par_iter_mut())
+                    .zip(nodes.par_iter_mut())
+                    .zip(energies.par_iter_mut())
+                    .with_min_len(MIN_PARALLEL_COSTLY)
+                    .for_each(|(((c, loads), nodes), energy)| {
+                        update(c, loads, nodes, energy);
+                    });
+            };
+            let all = (
+                &mut contacts.list[..],
+                (&mut self.loads[..], (&mut self.load_nodes[..], &mut self.energies[..])),
+            );
+            by_runs(all, len, runs, &law);
         }
         // in key order, the free spheres' contacts among the others
         let mut add = |l: &NodeLoad| {
@@ -196,7 +255,7 @@ impl ContactPipeline {
         if gathered && contacts.pairs.is_empty() {
             // no pair touches, the general contacts' loads alone: summed per range of
             // particles (`gather.rs`)
-            write_general_loads(force, torque, &self.loads, &self.load_nodes);
+            write_general_loads(force, torque, &self.loads, &self.load_nodes, homes);
             return report;
         }
         if gathered {

@@ -13,13 +13,17 @@ use crate::contact::{
 use crate::contact_list::Contacts;
 use crate::dashpots::account_ended_springs;
 use crate::gather::LoadIndex;
+use crate::home_loops::{
+    by_runs, chunk_home_runs, element_particle, shared, write_hulls, PerChunk,
+};
+use crate::homes::Homes;
 use crate::offsets::continued_overlap;
 use crate::pair_parts::PairParts;
 use crate::pair_passes::PairScratch;
 use crate::parallel::MAX_CHUNKS_PER_TASK;
-use crate::parallel::{MIN_PARALLEL_CHEAP, MIN_PARALLEL_COSTLY};
+use crate::parallel::MIN_PARALLEL_COSTLY;
 use crate::part_step::PartsRoom;
-use crate::prefilter::{proven_apart, write_hull, Hull};
+use crate::prefilter::{proven_apart, Hull};
 use crate::touchings::{match_sorted, Touchings};
 use flexdem_contact::{ContactDamping, LinkKinematicsMode};
 use flexdem_elements::pairs::{self, Candidate, ConnectionRef, PFacetRef, SphereRef};
@@ -67,6 +71,10 @@ pub(crate) struct ContactPipeline {
 /// Candidate pairs per parallel task of the detection (fixed, the order of the touchings does
 /// not depend on it: each chunk keeps its own in pair order, read back in chunk order).
 const DETECT_CHUNK: usize = 1024;
+
+/// Candidate pairs and their chunks' touching candidates and pairs, cut by home.
+type DetectPiece<'a> =
+    (&'a [(u32, u32)], (PerChunk<'a, Vec<ElementCandidate>>, PerChunk<'a, Vec<(u32, u32)>>));
 
 /// Buffers of [`ContactPipeline::detect`].
 #[derive(Clone, Debug, Default)]
@@ -251,6 +259,7 @@ impl ContactPipeline {
         adj: &Adjacency,
         collider: &Collider,
         dt: Real,
+        homes: &Homes,
     ) -> BirthReport {
         // 1. exact closest features of every candidate pair; keep the touching ones. The
         // exact kernels cost up to a microsecond (triangle–triangle) and most candidate pairs
@@ -266,18 +275,7 @@ impl ContactPipeline {
         } else {
             // written in place: a collect copies each hull through `memcpy`
             self.scratch.hulls.resize(elements.len(), unused);
-            self.scratch
-                .hulls
-                .par_iter_mut()
-                .zip(elements.par_iter())
-                .enumerate()
-                .with_min_len(MIN_PARALLEL_CHEAP)
-                .for_each(|(i, (h, &e))| {
-                    // (an element in no pair keeps a stale hull: none reads it)
-                    if paired(i) {
-                        write_hull(model, e, h);
-                    }
-                });
+            write_hulls(&mut self.scratch.hulls, elements, model, &paired, homes);
         }
         // per fixed chunk of candidate pairs, in parallel: the slab test, then the exact
         // kernel of the survivors, the touching ones kept in pair order (one pass, no
@@ -288,27 +286,40 @@ impl ContactPipeline {
         at_least(&mut scratch.found, chunks);
         at_least(&mut scratch.found_pairs, chunks);
         at_least(&mut scratch.chunk_order, chunks);
-        collider
-            .pairs
-            .par_chunks(DETECT_CHUNK)
-            .zip(scratch.found[..chunks].par_iter_mut())
-            .zip(scratch.found_pairs[..chunks].par_iter_mut())
-            .with_max_len(MAX_CHUNKS_PER_TASK)
-            .for_each(|((pairs, found), found_pairs)| {
-                found.clear();
-                found_pairs.clear();
-                for &(i, j) in pairs {
-                    if proven_apart(&hulls[i as usize], &hulls[j as usize]) {
-                        continue;
+        let detect_chunks = |_: usize, (pairs, (found, found_pairs)): DetectPiece<'_>| {
+            pairs
+                .par_chunks(DETECT_CHUNK)
+                .zip(found.outputs.par_iter_mut())
+                .zip(found_pairs.outputs.par_iter_mut())
+                .with_max_len(MAX_CHUNKS_PER_TASK)
+                .for_each(|((pairs, found), found_pairs)| {
+                    found.clear();
+                    found_pairs.clear();
+                    for &(i, j) in pairs {
+                        if proven_apart(&hulls[i as usize], &hulls[j as usize]) {
+                            continue;
+                        }
+                        let (a, b) = (elements[i as usize], elements[j as usize]);
+                        let c = candidate(model, a, b);
+                        if c.overlap() > 0.0 {
+                            found.push(ElementCandidate { element1: a, element2: b, candidate: c });
+                            found_pairs.push((i, j));
+                        }
                     }
-                    let (a, b) = (elements[i as usize], elements[j as usize]);
-                    let c = candidate(model, a, b);
-                    if c.overlap() > 0.0 {
-                        found.push(ElementCandidate { element1: a, element2: b, candidate: c });
-                        found_pairs.push((i, j));
-                    }
-                }
-            });
+                });
+        };
+        // by the home of each chunk's first pair's first element (`home_loops.rs`)
+        let pairs = &collider.pairs[..];
+        let found = PerChunk { outputs: &mut scratch.found[..chunks], chunk: DETECT_CHUNK };
+        let found_pairs =
+            PerChunk { outputs: &mut scratch.found_pairs[..chunks], chunk: DETECT_CHUNK };
+        let homes = shared(homes, model).then_some(homes);
+        let home = |c: usize| {
+            let e = elements[pairs[c * DETECT_CHUNK].0 as usize];
+            homes.map_or(0, |h| h.home_of(element_particle(model, e)))
+        };
+        let runs = chunk_home_runs(pairs.len(), DETECT_CHUNK, homes, home);
+        by_runs((pairs, (found, found_pairs)), pairs.len(), runs, &detect_chunks);
         let scratch = &mut self.scratch;
         scratch.starts.clear();
         scratch.starts.push(0);

@@ -11,6 +11,8 @@
 //! particle's entries of the two are merged by key.
 
 use crate::contact::Contact;
+use crate::homes::{in_homes, Homes, Sums};
+use crate::integrator::CHUNK as STEP_CHUNK;
 use crate::neighbours::NeighbourList;
 use crate::pair_parts::SumBy;
 use crate::pair_passes::PairScratch;
@@ -250,9 +252,10 @@ impl LoadIndex {
 /// for none), each particle's in contact order and slot order from +0: what adding them to
 /// zeroed arrays in one pass gives, bit for bit, when no candidate pair touches (with
 /// pairs touching, their loads come among these in key order: `LoadIndex`). In parallel
-/// over as many ranges of particles as there are threads, each range zeroed, then given the
-/// loads on its particles by a scan of every contact's nodes (24 bytes a contact; a load is
-/// read only by its range). Without an index: for the PFacet membrane of 10⁵ elements under
+/// over the homes' ranges of particles (`homes.rs`: those the leapfrog steps on the same
+/// thread; without homes as many equal ranges as there are threads), each home's ranges
+/// zeroed, then given the loads on their particles by a scan of every contact's nodes (24
+/// bytes a contact; a load is read only by its home). Without an index: for the PFacet membrane of 10⁵ elements under
 /// spheres (9 300 contacts, no pair), the index of the general loads (a counting sort on one
 /// thread) and the gather per particle took 195 and 274 µs of a 2-thread step.
 pub(crate) fn write_general_loads(
@@ -260,21 +263,38 @@ pub(crate) fn write_general_loads(
     torque: &mut [Vec3],
     loads: &[[NodeLoad; 6]],
     load_nodes: &[[u32; 6]],
+    homes: &Homes,
 ) {
-    let ranges = rayon::current_num_threads().max(1);
-    let per = force.len().div_ceil(ranges).max(1);
-    let each = force.par_chunks_mut(per).zip(torque.par_chunks_mut(per)).enumerate();
-    each.for_each(|(r, (f, t))| {
-        f.fill(Vec3::zeros());
-        t.fill(Vec3::zeros());
-        let first = r * per;
-        let range = first as u32..(first + f.len()) as u32;
+    let n = force.len().min(torque.len());
+    let mut runs = Vec::with_capacity(8);
+    let count = if homes.count() > 1 && homes.len() == n {
+        // the ranges of the step's homes: the threads write the sums the leapfrog reads
+        homes.item_runs(n, STEP_CHUNK, &mut runs);
+        homes.count()
+    } else {
+        let ranges = rayon::current_num_threads().max(1);
+        let per = n.div_ceil(ranges).max(1);
+        runs.extend((0..ranges).map(|r| (r * per, r)).filter(|&(s, _)| s < n));
+        ranges
+    };
+    if runs.is_empty() {
+        return;
+    }
+    let all = (&mut force[..n], &mut torque[..n]);
+    in_homes(all, &runs, n, count, &|mut pieces: Vec<(usize, Sums<'_>)>| {
+        for (_, (f, t)) in pieces.iter_mut() {
+            f.fill(Vec3::zeros());
+            t.fill(Vec3::zeros());
+        }
         for (nodes, loads) in load_nodes.iter().zip(loads) {
-            for (node, l) in nodes.iter().zip(loads) {
-                if range.contains(node) {
-                    let k = (node - range.start) as usize;
-                    f[k] += l.force;
-                    t[k] += l.torque;
+            for (&node, l) in nodes.iter().zip(loads) {
+                let node = node as usize;
+                for (first, (f, t)) in pieces.iter_mut() {
+                    if let Some(k) = node.checked_sub(*first).filter(|&k| k < f.len()) {
+                        f[k] += l.force;
+                        t[k] += l.torque;
+                        break;
+                    }
                 }
             }
         }
@@ -378,9 +398,17 @@ mod tests {
             let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
             let (mut f, mut t) =
                 (vec![Vec3::repeat(7.0); particles], vec![Vec3::repeat(7.0); particles]);
-            pool.install(|| write_general_loads(&mut f, &mut t, &loads, &nodes));
+            let mut homes = Homes::default();
+            pool.install(|| write_general_loads(&mut f, &mut t, &loads, &nodes, &homes));
             assert_eq!(bits(&f), bits(&one_pass.0), "{threads} threads");
             assert_eq!(bits(&t), bits(&one_pass.1), "{threads} threads");
+            // the step's homes: blocks of particles cut by thread
+            homes.set_by_blocks(&[0, particles / 3, particles / 2, particles], threads);
+            f.fill(Vec3::repeat(7.0));
+            t.fill(Vec3::repeat(7.0));
+            pool.install(|| write_general_loads(&mut f, &mut t, &loads, &nodes, &homes));
+            assert_eq!(bits(&f), bits(&one_pass.0), "{threads} threads, {homes:?}");
+            assert_eq!(bits(&t), bits(&one_pass.1), "{threads} threads, {homes:?}");
         }
     }
 

@@ -9,6 +9,7 @@
 //! damped as `aᵢ ← aᵢ·(1 − λ·sign(aᵢ·(vᵢ + aᵢ·dt/2)))`. A blocked DOF keeps its velocity
 //! component (0, or an imposed value) and feels neither force nor gravity.
 
+use crate::homes::{in_homes, Homes, Piece};
 use crate::integrator_lanes::{leapfrog_four, Chunk, Kick, LaneSums};
 use crate::parallel::MAX_CHUNKS_PER_TASK;
 pub use crate::step_work::StepWork;
@@ -61,7 +62,7 @@ pub fn leapfrog_step(
 ) -> StepWork {
     let checks =
         &mut Checks { reach: None, chunk_reach: &[], verlet: None, flags: &mut Vec::new() };
-    leapfrog_step_lanes(p, force, torque, step, parts, true, checks, &[])
+    leapfrog_step_lanes(p, force, torque, step, parts, true, checks, &Homes::default())
 }
 
 /// The engine's [`leapfrog_step`]: with it, each chunk's particles are checked as soon as
@@ -73,9 +74,9 @@ pub fn leapfrog_step(
 /// instructions; the collider's watch, a pass at the next step over the positions, the
 /// references and the limits, took 211–305 µs a step of the packing of 10⁵ spheres.)
 ///
-/// `homes`, when not empty, are the first particles of the parts the pairs were stepped in
-/// at this step, then the particle count (`PairParts::homes`): the chunks are then shared
-/// among the threads as those parts were (see [`step_in_homes`]); the results are the same.
+/// `homes`, when they cut these particles at more than one home, share the chunks among the
+/// threads as the step's other loops share their items (`homes.rs`; with the pairs in parts,
+/// as those parts were: `Homes::set_by_parts`); the results are the same.
 pub(crate) fn leapfrog_step_checked(
     p: &mut Particles,
     force: &[Vec3],
@@ -83,7 +84,7 @@ pub(crate) fn leapfrog_step_checked(
     step: &Leapfrog,
     parts: &mut Vec<StepWork>,
     checks: &mut Checks<'_>,
-    homes: &[usize],
+    homes: &Homes,
 ) -> (StepWork, ChunkCheck) {
     let work = leapfrog_step_lanes(p, force, torque, step, parts, true, checks, homes);
     let any = checks.flags.iter().fold(ChunkCheck::default(), |a, c| ChunkCheck {
@@ -106,7 +107,7 @@ fn leapfrog_step_lanes(
     parts: &mut Vec<StepWork>,
     four: bool,
     checks: &mut Checks<'_>,
-    homes: &[usize],
+    homes: &Homes,
 ) -> StepWork {
     let Leapfrog { gravity, damping: lambda, previous, dt } = *step;
     let gravity = &gravity;
@@ -172,9 +173,6 @@ fn leapfrog_step_lanes(
         checks.flags.push(flagged);
     } else {
         let (n, chunks) = (p.len(), p.len().div_ceil(CHUNK));
-        // the pairs' parts if they are those of these particles, else one part
-        let whole = [0, n];
-        let homes = if homes.len() > 2 && homes.last() == Some(&n) { homes } else { &whole };
         parts.clear();
         parts.resize(chunks, StepWork::default());
         checks.flags.clear();
@@ -187,7 +185,19 @@ fn leapfrog_step_lanes(
             (work, check(c, chunk))
         };
         let out = ChunkOutputs { first: 0, works: parts, flags: checks.flags };
-        step_in_homes(homes, all, out, &step);
+        if homes.count() > 1 && homes.len() == n {
+            // every home's chunks on one task, as the step's other loops share the particles
+            let mut runs = Vec::with_capacity(8);
+            homes.item_runs(n, CHUNK, &mut runs);
+            let all = Stepped { chunk: all, out };
+            in_homes(all, &runs, n, homes.count(), &|pieces: Vec<(usize, Stepped<'_>)>| {
+                for (_, p) in pieces {
+                    step_chunks(p.chunk, p.out, &step);
+                }
+            });
+        } else {
+            step_chunks(all, out, &step);
+        }
     }
     let mut total = StepWork::default();
     for w in parts.iter() {
@@ -203,44 +213,32 @@ struct ChunkOutputs<'a> {
     flags: &'a mut [ChunkCheck],
 }
 
-/// The chunk where a part that starts at particle `i` starts its chunks: the nearest.
-fn home_chunk(i: usize) -> usize {
-    (i + CHUNK / 2) / CHUNK
+/// Particles of whole chunks and their chunks' outputs.
+struct Stepped<'a> {
+    chunk: Chunk<'a>,
+    out: ChunkOutputs<'a>,
 }
 
-/// Steps `all` (the particles of chunks `out.first..`, in chunks of [`CHUNK`]) part by part,
-/// `homes` the first particle of each part then the end, each part from the chunk nearest
-/// its first particle ([`home_chunk`]): the parts halved and the halves in
-/// parallel, as `part_step::step_runs` halves the pairs' parts' runs, so that the thread that
-/// summed a part's loads (and read its particles) most often steps them too; within a part,
-/// its chunks in parallel in tasks of at most [`MAX_CHUNKS_PER_TASK`]. (Split by rayon alone
-/// over all the chunks, the halves' border fell 6 chunks from the parts', the packing of 10⁵
-/// spheres at 2 threads. What this buys is small and not shown beyond the noise: with the
-/// walls' parts, 12 alternated rounds gave the leapfrog 1.220 against 1.289 ms when the
-/// host's cores did not share their caches, 1.125 against 1.077 when they did, the parts'
-/// border being put by contact cost, not by particle count; bench/README, twenty-third
-/// session.)
-fn step_in_homes<F>(homes: &[usize], all: Chunk<'_>, out: ChunkOutputs<'_>, step: &F)
+impl Piece for Stepped<'_> {
+    /// The first `at` particles (a multiple of [`CHUNK`], or all) and the others.
+    fn split_at(self, at: usize) -> (Self, Self) {
+        let (a, b) = self.chunk.split_at(at);
+        let mid = at.div_ceil(CHUNK);
+        let (works, works_b) = self.out.works.split_at_mut(mid);
+        let (flags, flags_b) = self.out.flags.split_at_mut(mid);
+        let first_b = self.out.first + mid;
+        let out_a = ChunkOutputs { first: self.out.first, works, flags };
+        let out_b = ChunkOutputs { first: first_b, works: works_b, flags: flags_b };
+        (Stepped { chunk: a, out: out_a }, Stepped { chunk: b, out: out_b })
+    }
+}
+
+/// Steps `all` (the particles of chunks `out.first..`, in chunks of [`CHUNK`]), its chunks
+/// in parallel in tasks of at most [`MAX_CHUNKS_PER_TASK`].
+fn step_chunks<F>(all: Chunk<'_>, out: ChunkOutputs<'_>, step: &F)
 where
     F: Fn(usize, &mut Chunk<'_>) -> (StepWork, ChunkCheck) + Sync,
 {
-    let parts = homes.len() - 1;
-    if parts > 1 {
-        let chunks = all.pos.len().div_ceil(CHUNK);
-        let mid = home_chunk(homes[parts / 2]).clamp(out.first, out.first + chunks) - out.first;
-        let at = (mid * CHUNK).min(all.pos.len());
-        let (a, b) = all.split_at(at);
-        let (works, works_b) = out.works.split_at_mut(mid);
-        let (flags, flags_b) = out.flags.split_at_mut(mid);
-        let first_b = out.first + mid;
-        let out_a = ChunkOutputs { first: out.first, works, flags };
-        let out_b = ChunkOutputs { first: first_b, works: works_b, flags: flags_b };
-        rayon::join(
-            || step_in_homes(&homes[..=parts / 2], a, out_a, step),
-            || step_in_homes(&homes[parts / 2..], b, out_b, step),
-        );
-        return;
-    }
     let Chunk { pos, vel, ori, ang, mass, inertia, f, t, blocked } = all;
     (
         pos.par_chunks_mut(CHUNK),
@@ -481,8 +479,8 @@ mod tests {
             let (mut a, mut b) = (p.clone(), p.clone());
             let flags = &mut Vec::new();
             let none = &mut Checks { reach: None, chunk_reach: &[], verlet: None, flags };
-            let wa = leapfrog_step_lanes(&mut a, &f, &t, &step, &mut Vec::new(), true, none, &[]);
-            let wb = leapfrog_step_lanes(&mut b, &f, &t, &step, &mut Vec::new(), false, none, &[]);
+            let wa = leapfrog_step_lanes(&mut a, &f, &t, &step, &mut Vec::new(), true, none, &Homes::default());
+            let wb = leapfrog_step_lanes(&mut b, &f, &t, &step, &mut Vec::new(), false, none, &Homes::default());
             // the energy terms, summed lane by lane, differ from the one-by-one sums by
             // round-off only: within 1e-12 of a bound on the size of every term (½m·v², m·a·v
             // over the kick, f·v and m·g·v over a step, and their rotational twins)
@@ -510,19 +508,11 @@ mod tests {
     }
     use flexdem_elements::{Particle, ParticleKind};
 
-    /// A part's chunks start at the chunk boundary nearest its first particle.
-    #[test]
-    fn a_part_starts_at_the_nearest_chunk() {
-        let half = CHUNK / 2;
-        let starts = [0, 1, half - 1, half, CHUNK, 3 * CHUNK + half - 1, 3 * CHUNK + half];
-        assert_eq!(starts.map(home_chunk), [0, 0, 0, 1, 1, 3, 4]);
-    }
-
-    /// Stepped part by part on two or three threads, with parts of any sizes (empty ones
-    /// too), the particles get the same bits, the energy terms and the checks' answers the
+    /// Stepped home by home on two or three threads, with the pairs' parts of any sizes (empty
+    /// ones too) or blocks of particles cut by thread, the particles get the same bits, the energy terms and the checks' answers the
     /// same values as in one run over all the chunks.
     #[test]
-    fn chunks_stepped_by_the_pairs_parts_give_the_same_bits() {
+    fn chunks_stepped_by_their_homes_give_the_same_bits() {
         let n = 9 * CHUNK + 100;
         let mut p = Particles::default();
         for i in 0..n {
@@ -547,7 +537,7 @@ mod tests {
         };
         let reach = vec![0.005; n];
         let chunk_reach = chunk_minima(&reach, CHUNK);
-        let run = |homes: &[usize]| {
+        let run = |homes: &Homes| {
             let mut a = p.clone();
             let mut flags = Vec::new();
             let checks = &mut Checks {
@@ -560,7 +550,7 @@ mod tests {
                 leapfrog_step_checked(&mut a, &f, &t, &step, &mut Vec::new(), checks, homes);
             (a, format!("{work:?} {found:?} {flags:?}"))
         };
-        let (one, expected) = run(&[]);
+        let (one, expected) = run(&Homes::default());
         let bits = |p: &Particles| {
             let v = p
                 .pos
@@ -590,7 +580,18 @@ mod tests {
         ];
         for threads in [2, 3] {
             let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
-            for homes in cases {
+            let mut all = Vec::new();
+            for parts in cases {
+                let mut homes = Homes::default();
+                homes.set_by_parts(parts);
+                all.push(homes);
+            }
+            for blocks in [&[0, n][..], &[0, 3 * CHUNK + 5, 7 * CHUNK, n], &[0, 10, 20, n]] {
+                let mut homes = Homes::default();
+                homes.set_by_blocks(blocks, threads);
+                all.push(homes);
+            }
+            for homes in &all {
                 let (a, got) = pool.install(|| run(homes));
                 assert!(bits(&a) == bits(&one), "{threads} threads, homes {homes:?}");
                 assert_eq!(got, expected, "{threads} threads, homes {homes:?}");
@@ -774,8 +775,15 @@ mod tests {
                 verlet,
                 flags: &mut flags,
             };
-            let (wa, found) =
-                leapfrog_step_checked(&mut a, &f, &t, &step, &mut Vec::new(), checks, &[]);
+            let (wa, found) = leapfrog_step_checked(
+                &mut a,
+                &f,
+                &t,
+                &step,
+                &mut Vec::new(),
+                checks,
+                &Homes::default(),
+            );
             let flagged = found.flagged;
             let wb = leapfrog_step(&mut b, &f, &t, &step, &mut Vec::new());
             let same = |x: &[Vec3], y: &[Vec3]| {
@@ -808,8 +816,15 @@ mod tests {
             };
             let checks =
                 &mut Checks { reach: None, chunk_reach: &[], verlet: Some(far), flags: &mut flags };
-            let (_, found) =
-                leapfrog_step_checked(&mut c, &f, &t, &step, &mut Vec::new(), checks, &[]);
+            let (_, found) = leapfrog_step_checked(
+                &mut c,
+                &f,
+                &t,
+                &step,
+                &mut Vec::new(),
+                checks,
+                &Homes::default(),
+            );
             let pushed = case.is_some_and(|(_, x)| x.is_infinite());
             assert_eq!((found.flagged, found.beyond), (false, pushed), "{case:?}");
         }

@@ -15,6 +15,8 @@ mod energy;
 mod error;
 mod fresh_shares;
 mod gather;
+mod home_loops;
+mod homes;
 mod integrator;
 mod integrator_lanes;
 mod links;

@@ -2,6 +2,8 @@
 //! (model.md §3), updated in parallel each step, their node loads summed per node in a fixed
 //! order so that the result does not depend on the number of threads.
 
+use crate::homes::{chunk_runs, in_homes, Homes, Piece, Sums};
+use crate::integrator::CHUNK as STEP_CHUNK;
 use crate::parallel::MAX_CHUNKS_PER_TASK;
 use flexdem_contact::link_lanes::{update_link_lanes, LaneNodes, LANES};
 use flexdem_contact::{
@@ -279,6 +281,13 @@ impl Links {
     /// breakage events and energy sums (summed per chunk of links, then over the chunks in
     /// order: independent of the thread count).
     pub fn update(&mut self, p: &Particles, dt: Real) -> LinkUpdate {
+        self.update_in_homes(p, dt, &Homes::default())
+    }
+
+    /// [`Links::update`], the chunks of links shared among the threads by the home of each
+    /// chunk's first node when `homes` cut the particles at more than one (`homes.rs`): the
+    /// thread that steps a node links it. The same bits.
+    pub(crate) fn update_in_homes(&mut self, p: &Particles, dt: Real, homes: &Homes) -> LinkUpdate {
         if self.loads.len() != self.nodes.len() {
             self.loads = vec![LinkLoad::default(); self.nodes.len()];
         }
@@ -390,25 +399,52 @@ impl Links {
             self.chunk_sums.push(sums);
         } else {
             let chunks = self.nodes.len().div_ceil(CHUNK);
-            let plastic = if self.plastic.is_empty() {
-                Either::Left((0..chunks).into_par_iter().map(|_| None))
-            } else {
-                Either::Right(self.plastic.par_chunks_mut(CHUNK).map(Some))
+            self.chunk_sums.clear();
+            self.chunk_sums.resize(chunks, LinkUpdate::default());
+            let plastic = (!self.plastic.is_empty()).then_some(&mut self.plastic[..]);
+            let all = LinkChunks {
+                nodes: &self.nodes,
+                class: &self.class,
+                spring: &self.spring,
+                state: &mut self.state,
+                loads: &mut self.loads,
+                plastic,
+                sums: &mut self.chunk_sums,
             };
-            (
-                self.nodes.par_chunks(CHUNK),
-                self.class.par_chunks(CHUNK),
-                self.spring.par_chunks(CHUNK),
-                self.state.par_chunks_mut(CHUNK),
-                self.loads.par_chunks_mut(CHUNK),
-            )
-                .into_par_iter()
-                .zip(plastic)
-                .with_max_len(MAX_CHUNKS_PER_TASK)
-                .map(|((nodes, class, spring, state, loads), plastic)| {
-                    step_chunk(nodes, class, spring, state, loads, plastic)
-                })
-                .collect_into_vec(&mut self.chunk_sums);
+            let in_chunks = |l: LinkChunks<'_>| {
+                let chunks = l.sums.len();
+                let plastic = match l.plastic {
+                    None => Either::Left((0..chunks).into_par_iter().map(|_| None)),
+                    Some(p) => Either::Right(p.par_chunks_mut(CHUNK).map(Some)),
+                };
+                (
+                    l.nodes.par_chunks(CHUNK),
+                    l.class.par_chunks(CHUNK),
+                    l.spring.par_chunks(CHUNK),
+                    l.state.par_chunks_mut(CHUNK),
+                    l.loads.par_chunks_mut(CHUNK),
+                    l.sums.par_iter_mut(),
+                )
+                    .into_par_iter()
+                    .zip(plastic)
+                    .with_max_len(MAX_CHUNKS_PER_TASK)
+                    .for_each(
+                        |((nodes, class, spring, state, loads, sums), plastic)| {
+                            *sums = step_chunk(nodes, class, spring, state, loads, plastic);
+                        },
+                    );
+            };
+            let n = self.nodes.len();
+            if homes.count() > 1 && homes.len() == p.len() {
+                let mut runs = Vec::with_capacity(8);
+                let first_node = |c: usize| self.nodes[c * CHUNK][0] as usize;
+                chunk_runs(chunks, CHUNK, |c| homes.home_of(first_node(c)), &mut runs);
+                in_homes(all, &runs, n, homes.count(), &|pieces: Vec<(usize, LinkChunks<'_>)>| {
+                    pieces.into_iter().for_each(|(_, l)| in_chunks(l));
+                });
+            } else {
+                in_chunks(all);
+            }
         }
         self.chunk_sums.iter().fold(LinkUpdate::default(), |a, c| LinkUpdate {
             events: LinkEvents {
@@ -427,11 +463,22 @@ impl Links {
     /// parallel ([`Links::add_loads_per_node`]). The same bits either way, whatever the
     /// number of threads.
     pub fn add_loads(&self, force: &mut [Vec3], torque: &mut [Vec3]) {
+        self.add_loads_in_homes(force, torque, &Homes::default());
+    }
+
+    /// [`Links::add_loads`], the nodes shared among the threads by the step's `homes` when
+    /// they cut the particles at more than one (`homes.rs`).
+    pub(crate) fn add_loads_in_homes(
+        &self,
+        force: &mut [Vec3],
+        torque: &mut [Vec3],
+        homes: &Homes,
+    ) {
         let rows = self.node_offsets.len().saturating_sub(1);
         if self.loads.len() <= CHUNK && rows <= force.len() && rows <= torque.len() {
             self.add_loads_in_link_order(force, torque);
         } else {
-            self.add_loads_per_node(force, torque);
+            self.add_loads_per_node(force, torque, homes);
         }
     }
 
@@ -449,30 +496,91 @@ impl Links {
         }
     }
 
-    /// [`Links::add_loads`] node by node in link order (CSR), in parallel over the nodes.
-    fn add_loads_per_node(&self, force: &mut [Vec3], torque: &mut [Vec3]) {
-        let n = self.node_offsets.len().saturating_sub(1).min(force.len());
-        (&mut force[..n], &mut torque[..n])
-            .into_par_iter()
-            .enumerate()
-            .with_min_len(CHUNK)
-            .with_max_len(MAX_CHUNKS_PER_TASK * CHUNK)
-            .for_each(|(i, (f, t))| {
-                let (s, e) = (self.node_offsets[i] as usize, self.node_offsets[i + 1] as usize);
-                // summed in registers, stored once (the same additions in the same order)
-                let (mut fi, mut ti) = (*f, *t);
-                for &code in &self.node_loads[s..e] {
-                    let l = &self.loads[(code / 2) as usize];
-                    // node 1 (even code) takes −F and L − M, node 2 F and L + M: as a sign
-                    // s = ∓1 and no branch (which node a link's load goes to is as good as
-                    // random from one to the next); F·(−1) = −F exactly, and x + (−y) is
-                    // x − y, so the sums have the bits of the two-way form
-                    let s = Real::from(code % 2) * 2.0 - 1.0;
-                    fi += l.force_on_2 * s;
-                    ti += l.lever_torque + l.moment_on_2 * s;
+    /// [`Links::add_loads`] node by node in link order (CSR), in parallel over the nodes: per
+    /// home of `homes`, when they cut these particles, else over all.
+    fn add_loads_per_node(&self, force: &mut [Vec3], torque: &mut [Vec3], homes: &Homes) {
+        let n = self.node_offsets.len().saturating_sub(1).min(force.len()).min(torque.len());
+        let nodes = |first: usize, f: &mut [Vec3], t: &mut [Vec3]| {
+            (f, t)
+                .into_par_iter()
+                .enumerate()
+                .with_min_len(CHUNK)
+                .with_max_len(MAX_CHUNKS_PER_TASK * CHUNK)
+                .for_each(|(k, (f, t))| {
+                    let i = first + k;
+                    let (s, e) = (self.node_offsets[i] as usize, self.node_offsets[i + 1] as usize);
+                    // summed in registers, stored once (the same additions in the same order)
+                    let (mut fi, mut ti) = (*f, *t);
+                    for &code in &self.node_loads[s..e] {
+                        let l = &self.loads[(code / 2) as usize];
+                        // node 1 (even code) takes −F and L − M, node 2 F and L + M: as a sign
+                        // s = ∓1 and no branch (which node a link's load goes to is as good as
+                        // random from one to the next); F·(−1) = −F exactly, and x + (−y) is
+                        // x − y, so the sums have the bits of the two-way form
+                        let s = Real::from(code % 2) * 2.0 - 1.0;
+                        fi += l.force_on_2 * s;
+                        ti += l.lever_torque + l.moment_on_2 * s;
+                    }
+                    (*f, *t) = (fi, ti);
+                });
+        };
+        let (force, torque) = (&mut force[..n], &mut torque[..n]);
+        if homes.count() > 1 && homes.len() >= n && n > 0 {
+            let mut runs = Vec::with_capacity(8);
+            homes.item_runs(n, STEP_CHUNK, &mut runs);
+            in_homes((force, torque), &runs, n, homes.count(), &|pieces: Vec<(
+                usize,
+                Sums<'_>,
+            )>| {
+                for (first, (f, t)) in pieces {
+                    nodes(first, f, t);
                 }
-                (*f, *t) = (fi, ti);
             });
+        } else {
+            nodes(0, force, torque);
+        }
+    }
+}
+
+/// Links in whole chunks of [`CHUNK`]: their tables, their plastic states (none when no
+/// class is plastic) and their chunks' sums.
+struct LinkChunks<'a> {
+    nodes: &'a [[u32; 2]],
+    class: &'a [u32],
+    spring: &'a [u32],
+    state: &'a mut [LinkState],
+    loads: &'a mut [LinkLoad],
+    plastic: Option<&'a mut [LinkPlastic]>,
+    sums: &'a mut [LinkUpdate],
+}
+
+impl Piece for LinkChunks<'_> {
+    /// The first `at` links (a multiple of [`CHUNK`], or all) and the others.
+    fn split_at(self, at: usize) -> (Self, Self) {
+        let (nodes, nodes_b) = self.nodes.split_at(at);
+        let (class, class_b) = self.class.split_at(at);
+        let (spring, spring_b) = self.spring.split_at(at);
+        let (state, state_b) = self.state.split_at_mut(at);
+        let (loads, loads_b) = self.loads.split_at_mut(at);
+        let (plastic, plastic_b) = match self.plastic {
+            Some(p) => {
+                let (a, b) = p.split_at_mut(at);
+                (Some(a), Some(b))
+            }
+            None => (None, None),
+        };
+        let (sums, sums_b) = self.sums.split_at_mut(at.div_ceil(CHUNK));
+        let a = LinkChunks { nodes, class, spring, state, loads, plastic, sums };
+        let b = LinkChunks {
+            nodes: nodes_b,
+            class: class_b,
+            spring: spring_b,
+            state: state_b,
+            loads: loads_b,
+            plastic: plastic_b,
+            sums: sums_b,
+        };
+        (a, b)
     }
 }
 

@@ -1,6 +1,7 @@
 //! Tests of `links.rs`.
 
 use super::*;
+use crate::homes::Homes;
 use flexdem_contact::Material;
 use flexdem_elements::builders::{chain, straight_line};
 use flexdem_elements::StructureOptions;
@@ -202,12 +203,64 @@ fn loads_summed_link_after_link_are_the_per_node_sums() {
     let torque: Vec<Vec3> = (0..n).map(|_| v()).collect();
     let (mut f1, mut t1, mut f2, mut t2) = (force.clone(), torque.clone(), force, torque);
     assert!(links.len() <= CHUNK);
+    let (mut f3, mut t3) = (f2.clone(), t2.clone());
     links.add_loads(&mut f1, &mut t1);
-    links.add_loads_per_node(&mut f2, &mut t2);
+    links.add_loads_per_node(&mut f2, &mut t2, &Homes::default());
+    // by the step's homes, the structure's nodes and the free sphere in blocks cut by thread
+    let mut homes = Homes::default();
+    homes.set_by_blocks(&crate::homes::particle_blocks(&model.particles), 3);
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(3).build().unwrap();
+    pool.install(|| links.add_loads_per_node(&mut f3, &mut t3, &homes));
     let bits =
         |x: &[Vec3]| x.iter().flat_map(|v| v.iter().map(|c| c.to_bits())).collect::<Vec<_>>();
     assert_eq!(bits(&f1), bits(&f2));
     assert_eq!(bits(&t1), bits(&t2));
+    assert_eq!((bits(&f1), bits(&t1)), (bits(&f3), bits(&t3)));
     // (the free sphere after the nodes took nothing)
     assert!(f1[n - 1] == f2[n - 1]);
+}
+
+/// Updated by the homes of their chunks' first nodes (a chain of many chunks of links, free
+/// spheres after it, blocks cut by 2 or 3 threads), the links get the bits, the loads and
+/// the sums of one update on one thread.
+#[test]
+fn links_updated_by_homes_get_the_same_bits() {
+    let mut model = Model::new();
+    let mat = model.add_material(Material::new(1e7, 0.3, 1000.0, 0.5).unwrap()).unwrap();
+    let points = straight_line(Vec3::zeros(), Vec3::x() * 40.0, 4 * CHUNK + 77).unwrap();
+    chain(&mut model, &points, &StructureOptions::new("c", 0.004, mat)).unwrap();
+    for k in 0..2000 {
+        model.add_sphere(Vec3::new(k as Real, 5.0, 0.0), 0.1, mat).unwrap();
+    }
+    let n = model.particles.len();
+    let p = &mut model.particles;
+    for i in 0..n {
+        let s = (i as Real * 0.618).fract();
+        p.pos[i] += Vec3::new(0.0, 1e-4 * s, -2e-4 * s * s);
+        p.vel[i] = Vec3::new(0.01 * s, -0.02, 0.03 * (1.0 - s));
+        p.ang_vel[i] = Vec3::new(s, 0.2, -s);
+    }
+    let fresh = Links::from_model(&model, LinkKinematicsMode::Beam);
+    let run = |threads: usize, homes: &Homes| {
+        let mut links = fresh.clone();
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+        let sums = pool.install(|| {
+            (0..3).map(|_| links.update_in_homes(&model.particles, 1e-5, homes)).last()
+        });
+        let loads: Vec<u64> = links
+            .loads
+            .iter()
+            .flat_map(|l| l.force_on_2.iter().chain(&l.lever_torque).chain(&l.moment_on_2))
+            .map(|c| c.to_bits())
+            .collect();
+        (format!("{sums:?} {:?}", links.state), loads)
+    };
+    let one = run(1, &Homes::default());
+    let blocks = crate::homes::particle_blocks(&model.particles);
+    assert_eq!(blocks, [0, 4 * CHUNK + 78, n]);
+    for threads in [2, 3] {
+        let mut homes = Homes::default();
+        homes.set_by_blocks(&blocks, threads);
+        assert!(one == run(threads, &homes), "{threads} threads");
+    }
 }

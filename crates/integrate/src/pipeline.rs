@@ -5,6 +5,7 @@
 
 use crate::collider::Collider;
 use crate::contacts::ContactPipeline;
+use crate::homes::{particle_blocks, Homes};
 use crate::integrator::StepWork;
 use crate::servo::WallLoadsAtStep;
 use crate::state::State;
@@ -45,6 +46,14 @@ pub(crate) struct Pipeline {
     /// leapfrog of the last step found; none when not known (before a step, or after a
     /// particle was moved by hand): the collider then looks at every particle.
     pub(crate) moved_beyond: Option<bool>,
+    /// The first particle of each run of particles of one kind, then the particle count
+    /// (`homes::particle_blocks`).
+    pub(crate) blocks: Vec<usize>,
+    /// Which thread steps which particles at this step, in every loop (`homes.rs`): the
+    /// blocks cut by thread, set at the start of the step.
+    pub(crate) homes: Homes,
+    /// The leapfrog's homes when the pairs were stepped in parts (`Homes::set_by_parts`).
+    pub(crate) part_homes: Homes,
     /// Per-stage wall-clock times.
     pub(crate) timers: Timers,
     /// The user's hook, if any.
@@ -67,9 +76,17 @@ impl Pipeline {
             step_work: Vec::new(),
             step_flags: Vec::new(),
             moved_beyond: None,
+            blocks: particle_blocks(&state.model.particles),
+            homes: Homes::default(),
+            part_homes: Homes::default(),
             timers: Timers::default(),
             force_hook: None,
         }
+    }
+
+    /// Cuts the particles' blocks at the pool's thread count for this step's loops ([`Pipeline::homes`]).
+    pub(crate) fn set_homes(&mut self) {
+        self.homes.set_by_blocks(&self.blocks, rayon::current_num_threads());
     }
 
     /// Rebuilds what depends on the model and settings of `state`, keeping the force hook and

@@ -89,6 +89,7 @@ impl Simulation {
         let previous =
             if self.state.clock.previous_dt > 0.0 { self.state.clock.previous_dt } else { dt };
         self.pipeline.timers.begin();
+        self.pipeline.set_homes();
         self.collision_stage();
         let appeared = self.contact_stage(previous);
         let link_sums = self.link_stage(previous);
@@ -146,6 +147,7 @@ impl Simulation {
             &self.pipeline.adjacency,
             &self.pipeline.collider,
             dt,
+            &self.pipeline.homes,
         );
         // a birth's energy is a jump at time t, where the elastic terms of this step are
         self.state.energy.terms.contact_births += births.born_energy;
@@ -164,6 +166,7 @@ impl Simulation {
             dt,
             &mut self.pipeline.force,
             &mut self.pipeline.torque,
+            &self.pipeline.homes,
         );
         self.state.energy.terms.contact_births += pairs.born_energy;
         self.state.energy.terms.contact_releases += pairs.released;
@@ -178,8 +181,10 @@ impl Simulation {
 
     /// Links: every beam link, loads summed per node.
     fn link_stage(&mut self, dt: Real) -> LinkUpdate {
-        let sums = self.state.links.update(&self.state.model.particles, dt);
-        self.state.links.add_loads(&mut self.pipeline.force, &mut self.pipeline.torque);
+        let (p, homes) = (&self.state.model.particles, &self.pipeline.homes);
+        let sums = self.state.links.update_in_homes(p, dt, homes);
+        let (force, torque) = (&mut self.pipeline.force, &mut self.pipeline.torque);
+        self.state.links.add_loads_in_homes(force, torque, &self.pipeline.homes);
         self.pipeline.timers.lap(Stage::Links);
         sums
     }
@@ -285,8 +290,14 @@ impl Simulation {
         let (reach, flags) = (Some(&pipeline.collider.reach[..]), &mut pipeline.step_flags);
         let chunk_reach = &pipeline.collider.chunk_reach[..];
         let checks = &mut Checks { reach, chunk_reach, verlet, flags };
-        // the threads step the particles as they stepped their pairs
-        let homes = pipeline.contacts.pair_parts.homes();
+        // the threads step the particles as they stepped their pairs, else as the other loops
+        let parts = pipeline.contacts.pair_parts.homes();
+        let homes = if parts.len() > 2 {
+            pipeline.part_homes.set_by_parts(parts);
+            &pipeline.part_homes
+        } else {
+            &pipeline.homes
+        };
         let (mut work, found) = leapfrog_step_checked(
             &mut self.state.model.particles,
             &pipeline.force,
