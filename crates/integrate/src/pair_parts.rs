@@ -149,6 +149,9 @@ pub(crate) struct PairParts {
     this_step: Vec<SumBy>,
     /// Whether `this_step` holds this step's (else `by_pairs` does).
     general: bool,
+    /// Per chunk of pairs, whether each of its pairs is of two spheres its part sums
+    /// ([`SumBy::Part`] or [`SumBy::PartThenWalls`], from the pairs alone).
+    summed_in_part: Vec<bool>,
 }
 
 impl PairParts {
@@ -167,6 +170,7 @@ impl PairParts {
             return;
         }
         let built_for = Some((pairs.generation(), particles, parts));
+        let keys = pairs.keys();
         self.split_chunks(pairs, particles, parts);
         let first_wall = pairs.keys().first_wall();
         let part_of_pair =
@@ -192,6 +196,16 @@ impl PairParts {
                 SumBy::Part
             }
         }));
+        let in_part = |i: u32| self.by_pairs[i as usize] != SumBy::Deferred;
+        let chunk_in_part = |c: usize| {
+            let end = ((c + 1) * PAIR_CHUNK).min(keys.len());
+            (c * PAIR_CHUNK..end).all(|n| match keys.get(n) {
+                (Feature::Particle(a), Feature::Particle(b)) => in_part(a) && in_part(b),
+                _ => false,
+            })
+        };
+        let summed: Vec<bool> = (0..keys.len().div_ceil(PAIR_CHUNK)).map(chunk_in_part).collect();
+        self.summed_in_part = summed;
         self.built_for = built_for;
     }
 
@@ -304,6 +318,14 @@ impl PairParts {
         }));
     }
 
+    /// Whether chunk `c`'s pairs are all of two spheres whose loads its part sums at this
+    /// step (no general contact loads them): its loads can be added as they come, with no
+    /// particle's [`SumBy`] looked at.
+    #[inline]
+    pub(crate) fn summed_in_part(&self, c: usize) -> bool {
+        !self.general && self.summed_in_part.get(c) == Some(&true)
+    }
+
     /// How each particle's loads are summed at this step.
     pub(crate) fn sum_by(&self) -> &[SumBy] {
         if self.general {
@@ -368,6 +390,7 @@ impl PairParts {
 mod tests {
     use super::{middle_sphere, split_by_cost, PairParts, PAIR_CHUNK, WALL_PAIR_COST};
     use crate::neighbours::NeighbourList;
+    use flexdem_elements::virtual_sphere::Feature;
     use proptest::prelude::*;
 
     /// The cost of chunks `a..b` of `len` pairs whose walls' start at `first_wall`.
@@ -501,5 +524,47 @@ mod tests {
         assert_eq!(parts.particles(0).start, 0);
         assert!((0..n as usize).all(|i| parts.particles(parts.owner(i)).contains(&i)));
         assert!(parts.particles(7).is_empty());
+    }
+
+    /// A chunk is summed in its part when every pair of it is of two spheres that only pairs
+    /// of that part load: a chain's chunks but those holding a pair across two parts, and no
+    /// walls' chunk; none at a step with general contacts.
+    #[test]
+    fn chunks_summed_in_their_part_hold_no_pair_across_parts() {
+        let n = 40 * PAIR_CHUNK as u32;
+        let spheres: Vec<(u32, u32)> = (0..n - 1).map(|i| (i, i + 1)).collect();
+        let walls: Vec<(u32, u32)> = (0..n).step_by(7).map(|i| (0, i)).collect();
+        let mut list = NeighbourList::default();
+        list.rebuild(spheres, &walls);
+        let keys = list.keys();
+        let mut entries = vec![Vec::new(); n as usize];
+        for (k, &(a, b)) in keys.ids().iter().enumerate() {
+            match keys.get(k) {
+                (Feature::Particle(_), Feature::Particle(_)) => {
+                    entries[a as usize].push(2 * k as u32);
+                    entries[b as usize].push(2 * k as u32 + 1);
+                }
+                _ => entries[b as usize].push(2 * k as u32 + 1),
+            }
+        }
+        entries.iter_mut().for_each(|e| e.sort_unstable());
+        let mut parts = PairParts::default();
+        parts.split(&list, n as usize, 4, |i| &entries[i]);
+        let chunks = keys.len().div_ceil(PAIR_CHUNK);
+        let first_wall_chunk = keys.first_wall() / PAIR_CHUNK;
+        // (the chunks on either side of a part's start: the pair across holds one sphere of
+        // each part, the next pair the later one's first sphere, loaded from both)
+        let starts: Vec<usize> = (1..parts.owners()).map(|p| parts.chunks(p).start).collect();
+        let across = |c: usize| starts.iter().any(|&s| c + 1 == s || c == s);
+        for c in 0..chunks {
+            let expected = c < first_wall_chunk && !across(c);
+            assert_eq!(parts.summed_in_part(c), expected, "chunk {c}");
+        }
+        let summed = (0..chunks).filter(|&c| parts.summed_in_part(c)).count();
+        assert_eq!(summed, first_wall_chunk - 2 * starts.len());
+        parts.with_general(true, |i| i == 5);
+        assert!((0..chunks).all(|c| !parts.summed_in_part(c)));
+        parts.with_general(false, |_| false);
+        assert!(parts.summed_in_part(1));
     }
 }

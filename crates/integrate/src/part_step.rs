@@ -57,6 +57,27 @@ impl ToParts<'_> {
     }
 }
 
+/// [`ToParts`] for a chunk whose pairs are all of two spheres its part sums
+/// (`PairParts::summed_in_part`): each load added to its particle as it comes, body 1's then
+/// body 2's (what [`ToParts`] does with them).
+struct ToPart<'a> {
+    force: &'a mut [Vec3],
+    torque: &'a mut [Vec3],
+    first_particle: usize,
+}
+
+impl EmitLoads for ToPart<'_> {
+    #[inline(always)]
+    fn emit(&mut self, _: usize, key: &ContactKey, loads: &[NodeLoad; 2]) {
+        debug_assert!(matches!(key, (Feature::Particle(_), Feature::Particle(_))), "{key:?}");
+        for l in loads {
+            let k = l.node as usize - self.first_particle;
+            self.force[k] += l.force;
+            self.torque[k] += l.torque;
+        }
+    }
+}
+
 impl EmitLoads for ToParts<'_> {
     #[inline(always)]
     fn emit(&mut self, i: usize, key: &ContactKey, loads: &[NodeLoad; 2]) {
@@ -266,6 +287,12 @@ fn step_part(s: &PartShared<'_>, p: usize, inputs: PartInputs<'_>) {
         each.zip(blocks.chunks_mut(PAIR_CHUNK / BLOCK)).zip(positions.chunks_mut(PAIR_CHUNK));
     for (c, ((((ids, slots), blocks), positions), out)) in each.zip(chunks).enumerate() {
         let c = first_chunk + c;
+        if s.parts.summed_in_part(c) {
+            // (no particle's way of summing to look at, and no outcome to keep)
+            let mut to = ToPart { force: &mut *force, torque: &mut *torque, first_particle };
+            s.pass.step_chunk(c, ids, slots, blocks, &mut out.book, &mut to);
+            continue;
+        }
         let kept = ToOutcomes { positions, outcomes: &mut out.outcomes, base: c * PAIR_CHUNK };
         let (force, torque, deferred) = (&mut *force, &mut *torque, &mut *deferred);
         let parts = s.parts;
