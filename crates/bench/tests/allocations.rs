@@ -16,10 +16,15 @@ const BUILD_LIMIT: f64 = 100.0;
 #[global_allocator]
 static ALLOC: dhat::Alloc = dhat::Alloc;
 
-/// Allocations over `steps` steps after `warmup` (one thread): per step that did not
+/// Allocations over `steps` steps after `warmup`, in a pool of `threads`: per step that did not
 /// rebuild the candidate pairs, and per rebuild (the steps that did), with the rebuilds.
-fn allocations(scene: (Model, Settings), warmup: usize, steps: usize) -> (f64, f64, u64) {
-    let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
+fn allocations(
+    scene: (Model, Settings),
+    threads: usize,
+    warmup: usize,
+    steps: usize,
+) -> (f64, f64, u64) {
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
     pool.install(|| {
         let (model, settings) = scene;
         let mut sim = Simulation::new(model, settings).unwrap();
@@ -52,7 +57,7 @@ fn steps_allocate_nothing() {
         ("membrane", membrane(1000).unwrap()),
         ("tube_impact", tube_impact().unwrap()),
     ] {
-        let (per_step, per_build, builds) = allocations(scene, 300, 1000);
+        let (per_step, per_build, builds) = allocations(scene, 1, 300, 1000);
         println!("{name}: {per_step} allocations per step, {per_build} per rebuild ({builds})");
         // a step that keeps its candidate pairs allocates next to nothing (measured 0.085,
         // 0.009 and 0.058): a block of contacts growing or shrunk at a layout, a buffer
@@ -62,5 +67,17 @@ fn steps_allocate_nothing() {
         // keys), its chunks' buffers and the contacts' blocks anew: memory a large scene
         // gives back between builds; a bounded number of arrays, not one per pair
         assert!(per_build < BUILD_LIMIT, "{name}: {per_build} allocations per rebuild");
+    }
+    // at 2 threads, in scenes of several chunks whose loops share their items by the
+    // particles' homes (`homes.rs`, their pieces on the stack) and step the pairs in parts:
+    // nothing more than at one thread. (A settling packing of 10⁴ spheres gives its blocks
+    // of contacts room back and takes it again at their layouts, 0.755 allocations per step
+    // at either count; one profiler per process, so here.)
+    for (name, scene) in [("packing", packing(10_000)), ("membrane", membrane(10_000))] {
+        let scene = scene.unwrap();
+        let (one, _, _) = allocations(scene.clone(), 1, 50, 200);
+        let (two, _, builds) = allocations(scene, 2, 50, 200);
+        println!("{name}: {one} allocations per step at 1 thread, {two} at 2 ({builds} rebuilds)");
+        assert!(two <= one + 0.05, "{name}: {two} allocations per step at 2 threads, {one} at 1");
     }
 }

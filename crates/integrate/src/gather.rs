@@ -11,7 +11,7 @@
 //! particle's entries of the two are merged by key.
 
 use crate::contact::Contact;
-use crate::homes::{in_homes, Homes, Sums};
+use crate::homes::{in_homes, Homes, Pieces, Runs, Sums};
 use crate::integrator::CHUNK as STEP_CHUNK;
 use crate::neighbours::NeighbourList;
 use crate::pair_parts::SumBy;
@@ -266,7 +266,7 @@ pub(crate) fn write_general_loads(
     homes: &Homes,
 ) {
     let n = force.len().min(torque.len());
-    let mut runs = Vec::with_capacity(8);
+    let mut runs = Runs::new();
     let count = if homes.count() > 1 && homes.len() == n {
         // the ranges of the step's homes: the threads write the sums the leapfrog reads
         homes.item_runs(n, STEP_CHUNK, &mut runs);
@@ -281,7 +281,7 @@ pub(crate) fn write_general_loads(
         return;
     }
     let all = (&mut force[..n], &mut torque[..n]);
-    in_homes(all, &runs, n, count, &|mut pieces: Vec<(usize, Sums<'_>)>| {
+    in_homes(all, &runs, n, count, &|mut pieces: Pieces<Sums<'_>>| {
         for (_, (f, t)) in pieces.iter_mut() {
             f.fill(Vec3::zeros());
             t.fill(Vec3::zeros());

@@ -6,7 +6,7 @@
 //! writes the hulls that read it, and meets the contacts of the spheres it steps. The items,
 //! what each computes and where it is written do not depend on the homes.
 
-use crate::homes::{chunk_runs, in_homes, Homes, Piece};
+use crate::homes::{chunk_runs, in_homes, Homes, Piece, Pieces, Runs};
 use crate::parallel::MIN_PARALLEL_CHEAP;
 use crate::prefilter::{write_hull, Hull};
 use flexdem_elements::touching::Element;
@@ -38,9 +38,9 @@ pub(crate) fn chunk_home_runs(
     chunk: usize,
     homes: Option<&Homes>,
     home: impl Fn(usize) -> usize,
-) -> Option<(Vec<(usize, usize)>, usize)> {
+) -> Option<(Runs, usize)> {
     let homes = homes.filter(|h| h.count() > 1 && len > chunk)?;
-    let mut runs = Vec::with_capacity(8);
+    let mut runs = Runs::new();
     chunk_runs(len.div_ceil(chunk), chunk, home, &mut runs);
     Some((runs, homes.count()))
 }
@@ -48,12 +48,8 @@ pub(crate) fn chunk_home_runs(
 /// Runs `task(first, piece)` on the pieces of `all` (`len` items) cut at `runs`
 /// ([`chunk_home_runs`]), each piece with its first item, every home's pieces on one task
 /// (`homes::in_homes`); all on this task without runs.
-pub(crate) fn by_runs<P, F>(
-    all: P,
-    len: usize,
-    runs: Option<(Vec<(usize, usize)>, usize)>,
-    task: &F,
-) where
+pub(crate) fn by_runs<P, F>(all: P, len: usize, runs: Option<(Runs, usize)>, task: &F)
+where
     P: Piece,
     F: Fn(usize, P) + Sync,
 {
@@ -61,7 +57,7 @@ pub(crate) fn by_runs<P, F>(
         task(0, all);
         return;
     };
-    in_homes(all, &runs, len, count, &|pieces: Vec<(usize, P)>| {
+    in_homes(all, &runs, len, count, &|pieces: Pieces<P>| {
         pieces.into_iter().for_each(|(first, p)| task(first, p));
     });
 }

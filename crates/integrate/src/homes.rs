@@ -22,7 +22,18 @@
 
 use flexdem_elements::{ParticleKind, Particles};
 use flexdem_geom::Vec3;
+use smallvec::SmallVec;
 use std::ops::Range;
+
+/// Runs of items: each one's first item and home, in item order (on the stack up to 8: two
+/// kinds of particles on four threads).
+pub(crate) type Runs = SmallVec<[(usize, usize); 8]>;
+
+/// A home's pieces of a loop's items, each with its first item, in item order.
+pub(crate) type Pieces<P> = SmallVec<[(usize, P); 8]>;
+
+/// The pieces of a loop's items with their first items and homes.
+type HomePieces<P> = SmallVec<[(usize, usize, P); 8]>;
 
 /// Per-particle force and torque sums, cut by home.
 pub(crate) type Sums<'a> = (&'a mut [Vec3], &'a mut [Vec3]);
@@ -138,7 +149,7 @@ impl Homes {
     /// runs of items ([`in_homes`]), each moved to the multiple of `grain` nearest it (the
     /// leapfrog's chunks; a run left empty dropped): the runs of the loops over the
     /// particles' arrays (the leapfrog, the sums of the loads it reads).
-    pub(crate) fn item_runs(&self, len: usize, grain: usize, runs: &mut Vec<(usize, usize)>) {
+    pub(crate) fn item_runs(&self, len: usize, grain: usize, runs: &mut Runs) {
         runs.clear();
         for (r, h) in self.runs().filter(|(r, _)| r.start < len) {
             let start = if r.start == 0 { 0 } else { nearest_multiple(r.start, grain, len) };
@@ -158,7 +169,7 @@ pub(crate) fn chunk_runs(
     chunks: usize,
     chunk: usize,
     home: impl Fn(usize) -> usize,
-    runs: &mut Vec<(usize, usize)>,
+    runs: &mut Runs,
 ) {
     runs.clear();
     for c in 0..chunks {
@@ -200,12 +211,12 @@ impl<A: Piece, B: Piece> Piece for (A, B) {
 pub(crate) fn in_homes<P, F>(all: P, runs: &[(usize, usize)], end: usize, homes: usize, task: &F)
 where
     P: Piece,
-    F: Fn(Vec<(usize, P)>) + Sync,
+    F: Fn(Pieces<P>) + Sync,
 {
-    let mut pieces = Vec::with_capacity(runs.len());
+    let mut pieces = HomePieces::new();
     let mut rest = Some(all);
     for (k, &(start, home)) in runs.iter().enumerate() {
-        let next = runs.get(k + 1).map_or(end, |r| r.0);
+        let (start, next) = (start.min(end), runs.get(k + 1).map_or(end, |r| r.0.min(end)));
         let (piece, after) = rest.take().expect("a piece left").split_at(next - start);
         if next > start {
             pieces.push((start, home, piece));
@@ -215,17 +226,17 @@ where
     split_homes(pieces, 0..homes.max(1), task);
 }
 
-fn split_homes<P, F>(pieces: Vec<(usize, usize, P)>, homes: Range<usize>, task: &F)
+fn split_homes<P, F>(pieces: HomePieces<P>, homes: Range<usize>, task: &F)
 where
     P: Piece,
-    F: Fn(Vec<(usize, P)>) + Sync,
+    F: Fn(Pieces<P>) + Sync,
 {
     if homes.len() <= 1 || pieces.iter().all(|p| p.1 == pieces[0].1) {
         task(pieces.into_iter().map(|(start, _, p)| (start, p)).collect());
         return;
     }
     let mid = homes.start + homes.len() / 2;
-    let (a, b): (Vec<_>, Vec<_>) = pieces.into_iter().partition(|p| p.1 < mid);
+    let (a, b): (HomePieces<P>, HomePieces<P>) = pieces.into_iter().partition(|p| p.1 < mid);
     rayon::join(|| split_homes(a, homes.start..mid, task), || split_homes(b, mid..homes.end, task));
 }
 
@@ -248,11 +259,11 @@ mod tests {
         assert_eq!((h.home_of(50_625), h.home_of(63_168), h.home_of(70_000)), (0, 1, 1));
         assert_eq!(h.count(), 2);
         // at the leapfrog's chunks
-        let mut runs = Vec::new();
+        let mut runs = Runs::new();
         h.item_runs(63_169, 1024, &mut runs);
-        assert_eq!(runs, [(0, 0), (25_600, 1), (50_176, 0), (57_344, 1)]);
+        assert_eq!(runs[..], [(0, 0), (25_600, 1), (50_176, 0), (57_344, 1)]);
         h.item_runs(50_625, 1024, &mut runs);
-        assert_eq!(runs, [(0, 0), (25_600, 1)]);
+        assert_eq!(runs[..], [(0, 0), (25_600, 1)]);
         h.set_by_blocks(&[0], 2);
         assert_eq!(h.runs().collect::<Vec<_>>(), [(0..0, 0)]);
     }
@@ -264,16 +275,16 @@ mod tests {
         let runs: Vec<_> = h.runs().collect();
         assert_eq!(runs, [(0..1000, 0), (1000..1100, 1), (1100..4000, 2), (4000..5000, 4)]);
         assert_eq!(h.count(), 5);
-        let mut runs = Vec::new();
+        let mut runs = Runs::new();
         h.item_runs(5000, 1024, &mut runs);
-        assert_eq!(runs, [(0, 0), (1024, 2), (4096, 4)]);
+        assert_eq!(runs[..], [(0, 0), (1024, 2), (4096, 4)]);
     }
 
     #[test]
     fn chunks_of_one_home_make_one_run() {
-        let mut runs = Vec::new();
+        let mut runs = Runs::new();
         chunk_runs(6, 10, |c| [0, 0, 1, 0, 0, 1][c], &mut runs);
-        assert_eq!(runs, [(0, 0), (20, 1), (30, 0), (50, 1)]);
+        assert_eq!(runs[..], [(0, 0), (20, 1), (30, 0), (50, 1)]);
     }
 
     /// Every item is given once, to the task of its home, the pieces in item order.
@@ -284,7 +295,7 @@ mod tests {
         let runs = [(0, 2), (10, 0), (10, 1), (40, 2), (55, 0), (90, 1)];
         let seen = Mutex::new(Vec::new());
         pool.install(|| {
-            in_homes(&mut items[..], &runs, 100, 3, &|pieces: Vec<(usize, &mut [usize])>| {
+            in_homes(&mut items[..], &runs, 100, 3, &|pieces: Pieces<&mut [usize]>| {
                 let mut got = Vec::new();
                 for (start, p) in pieces {
                     assert_eq!(p[0], start);

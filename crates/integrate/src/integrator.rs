@@ -9,7 +9,7 @@
 //! damped as `aᵢ ← aᵢ·(1 − λ·sign(aᵢ·(vᵢ + aᵢ·dt/2)))`. A blocked DOF keeps its velocity
 //! component (0, or an imposed value) and feels neither force nor gravity.
 
-use crate::homes::{in_homes, Homes, Piece};
+use crate::homes::{in_homes, Homes, Piece, Pieces, Runs};
 use crate::integrator_lanes::{leapfrog_four, Chunk, Kick, LaneSums};
 use crate::parallel::MAX_CHUNKS_PER_TASK;
 pub use crate::step_work::StepWork;
@@ -187,10 +187,10 @@ fn leapfrog_step_lanes(
         let out = ChunkOutputs { first: 0, works: parts, flags: checks.flags };
         if homes.count() > 1 && homes.len() == n {
             // every home's chunks on one task, as the step's other loops share the particles
-            let mut runs = Vec::with_capacity(8);
+            let mut runs = Runs::new();
             homes.item_runs(n, CHUNK, &mut runs);
             let all = Stepped { chunk: all, out };
-            in_homes(all, &runs, n, homes.count(), &|pieces: Vec<(usize, Stepped<'_>)>| {
+            in_homes(all, &runs, n, homes.count(), &|pieces: Pieces<Stepped<'_>>| {
                 for (_, p) in pieces {
                     step_chunks(p.chunk, p.out, &step);
                 }

@@ -2,7 +2,7 @@
 //! (model.md §3), updated in parallel each step, their node loads summed per node in a fixed
 //! order so that the result does not depend on the number of threads.
 
-use crate::homes::{chunk_runs, in_homes, Homes, Piece, Sums};
+use crate::homes::{chunk_runs, in_homes, Homes, Piece, Pieces, Runs, Sums};
 use crate::integrator::CHUNK as STEP_CHUNK;
 use crate::parallel::MAX_CHUNKS_PER_TASK;
 use flexdem_contact::link_lanes::{update_link_lanes, LaneNodes, LANES};
@@ -436,10 +436,10 @@ impl Links {
             };
             let n = self.nodes.len();
             if homes.count() > 1 && homes.len() == p.len() {
-                let mut runs = Vec::with_capacity(8);
+                let mut runs = Runs::new();
                 let first_node = |c: usize| self.nodes[c * CHUNK][0] as usize;
                 chunk_runs(chunks, CHUNK, |c| homes.home_of(first_node(c)), &mut runs);
-                in_homes(all, &runs, n, homes.count(), &|pieces: Vec<(usize, LinkChunks<'_>)>| {
+                in_homes(all, &runs, n, homes.count(), &|pieces: Pieces<LinkChunks<'_>>| {
                     pieces.into_iter().for_each(|(_, l)| in_chunks(l));
                 });
             } else {
@@ -526,12 +526,9 @@ impl Links {
         };
         let (force, torque) = (&mut force[..n], &mut torque[..n]);
         if homes.count() > 1 && homes.len() >= n && n > 0 {
-            let mut runs = Vec::with_capacity(8);
+            let mut runs = Runs::new();
             homes.item_runs(n, STEP_CHUNK, &mut runs);
-            in_homes((force, torque), &runs, n, homes.count(), &|pieces: Vec<(
-                usize,
-                Sums<'_>,
-            )>| {
+            in_homes((force, torque), &runs, n, homes.count(), &|pieces: Pieces<Sums<'_>>| {
                 for (first, (f, t)) in pieces {
                     nodes(first, f, t);
                 }
