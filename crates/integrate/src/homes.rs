@@ -49,8 +49,13 @@ pub(crate) struct Homes {
     count: usize,
 }
 
+/// The most runs of particles of one kind [`particle_blocks`] keeps apart.
+const MAX_BLOCKS: usize = 4;
+
 /// The first particle of each run of particles of one kind (a structure's node, a free
-/// sphere), then the particle count.
+/// sphere), then the particle count; all the particles in one run when they make more than
+/// [`MAX_BLOCKS`] (structures and spheres interleaved, bags among grains: each loop would
+/// then go through a piece per run and thread, however small).
 pub(crate) fn particle_blocks(p: &Particles) -> Vec<usize> {
     if p.is_empty() {
         return vec![0];
@@ -58,6 +63,9 @@ pub(crate) fn particle_blocks(p: &Particles) -> Vec<usize> {
     let node = |i: usize| p.kind[i] != ParticleKind::Sphere;
     let mut blocks = vec![0];
     blocks.extend((1..p.len()).filter(|&i| node(i) != node(i - 1)));
+    if blocks.len() > MAX_BLOCKS {
+        blocks.truncate(1);
+    }
     blocks.push(p.len());
     blocks
 }
@@ -316,5 +324,24 @@ mod tests {
         by_home.sort();
         assert_eq!(seen, by_home);
         assert!(items.iter().enumerate().all(|(i, &x)| x == i + 1000));
+    }
+
+    /// Runs of one kind: a membrane's nodes, then spheres; interleaved structures and
+    /// spheres beyond [`MAX_BLOCKS`] runs in one.
+    #[test]
+    fn particles_are_in_blocks_of_one_kind_unless_too_many() {
+        use flexdem_elements::Particle;
+        let of = |kinds: &[ParticleKind]| {
+            let mut p = Particles::default();
+            for &k in kinds {
+                p.push(Particle::at_rest(k, Vec3::zeros(), 0.01, 0));
+            }
+            particle_blocks(&p)
+        };
+        let (node, sphere) = (ParticleKind::Node, ParticleKind::Sphere);
+        assert_eq!(of(&[]), [0]);
+        assert_eq!(of(&[node, node, sphere, sphere, sphere]), [0, 2, 5]);
+        assert_eq!(of(&[sphere, node, node, sphere]), [0, 1, 3, 4]);
+        assert_eq!(of(&[node, sphere, node, sphere, node]), [0, 5]);
     }
 }
