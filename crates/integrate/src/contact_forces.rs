@@ -17,7 +17,7 @@ use crate::neighbours::{merged, Pick, Sink};
 use crate::pair_parts::PARTS_PER_THREAD;
 use crate::parallel::{MIN_PARALLEL_CHEAP, MIN_PARALLEL_COSTLY};
 use flexdem_contact::update_frictional_contact;
-use flexdem_elements::virtual_sphere::{distribute_force_as, Kinematics, NodeLoad};
+use flexdem_elements::virtual_sphere::{distribute_force_as, Kinematics, NodeLoad, VirtualSphere};
 use flexdem_elements::Model;
 use flexdem_geom::{Real, Vec3};
 use rayon::prelude::*;
@@ -74,22 +74,19 @@ impl ContactPipeline {
         self.loads.resize(contacts.list.len(), zero);
         self.load_nodes.resize(contacts.list.len(), [NO_NODE; 6]);
         self.energies.resize(contacts.list.len(), (0.0, 0.0));
+        // the force on body 2 shared among the nodes of both sites (body 1 takes −f)
+        let shares =
+            |c: &Contact, (vs1, vs2): (&VirtualSphere, &VirtualSphere), at: &Vec3, f: &Vec3| {
+                let l1 = distribute_force_as(mode, &c.site1, &p.pos, &vs1.center, at, &(-f));
+                (l1, distribute_force_as(mode, &c.site2, &p.pos, &vs2.center, at, f))
+            };
         let update = |c: &mut Contact,
                       loads: &mut [NodeLoad; 6],
                       nodes: &mut [u32; 6],
                       energy: &mut (Real, Real)| {
             let (vs1, vs2, g) = geometry(model, &k, c);
             let f = update_frictional_contact(&c.params, &mut c.state, &law_kinematics(&g), dt);
-            let l1 = distribute_force_as(
-                mode,
-                &c.site1,
-                &p.pos,
-                &vs1.center,
-                &g.point,
-                &(-f.force_on_2),
-            );
-            let l2 =
-                distribute_force_as(mode, &c.site2, &p.pos, &vs2.center, &g.point, &f.force_on_2);
+            let (l1, l2) = shares(c, (&vs1, &vs2), &g.point, &f.force_on_2);
             loads[..3].copy_from_slice(&l1);
             loads[3..].copy_from_slice(&l2);
             *nodes = load_nodes(c.site1.node_count(), c.site2.node_count(), loads);
@@ -125,22 +122,7 @@ impl ContactPipeline {
                                 *dashpot = zero;
                                 return;
                             }
-                            let l1 = distribute_force_as(
-                                mode,
-                                &c.site1,
-                                &p.pos,
-                                &vs1.center,
-                                &g.point,
-                                &(-f),
-                            );
-                            let l2 = distribute_force_as(
-                                mode,
-                                &c.site2,
-                                &p.pos,
-                                &vs2.center,
-                                &g.point,
-                                &f,
-                            );
+                            let (l1, l2) = shares(c, (&vs1, &vs2), &g.point, &f);
                             dashpot[..3].copy_from_slice(&l1);
                             dashpot[3..].copy_from_slice(&l2);
                         });

@@ -775,15 +775,9 @@ mod tests {
                 verlet,
                 flags: &mut flags,
             };
-            let (wa, found) = leapfrog_step_checked(
-                &mut a,
-                &f,
-                &t,
-                &step,
-                &mut Vec::new(),
-                checks,
-                &Homes::default(),
-            );
+            let none = Homes::default();
+            let (wa, found) =
+                leapfrog_step_checked(&mut a, &f, &t, &step, &mut Vec::new(), checks, &none);
             let flagged = found.flagged;
             let wb = leapfrog_step(&mut b, &f, &t, &step, &mut Vec::new());
             let same = |x: &[Vec3], y: &[Vec3]| {
@@ -816,15 +810,8 @@ mod tests {
             };
             let checks =
                 &mut Checks { reach: None, chunk_reach: &[], verlet: Some(far), flags: &mut flags };
-            let (_, found) = leapfrog_step_checked(
-                &mut c,
-                &f,
-                &t,
-                &step,
-                &mut Vec::new(),
-                checks,
-                &Homes::default(),
-            );
+            let (_, found) =
+                leapfrog_step_checked(&mut c, &f, &t, &step, &mut Vec::new(), checks, &none);
             let pushed = case.is_some_and(|(_, x)| x.is_infinite());
             assert_eq!((found.flagged, found.beyond), (false, pushed), "{case:?}");
         }
