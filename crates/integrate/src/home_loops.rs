@@ -6,6 +6,7 @@
 //! writes the hulls that read it, and meets the contacts of the spheres it steps. The items,
 //! what each computes and where it is written do not depend on the homes.
 
+pub(crate) use crate::homes::PerChunk;
 use crate::homes::{chunk_runs, in_homes, Homes, Piece, Pieces, Runs};
 use crate::parallel::MIN_PARALLEL_CHEAP;
 use crate::prefilter::{write_hull, Hull};
@@ -86,20 +87,6 @@ pub(crate) fn write_hulls(
     };
     let runs = chunk_home_runs(elements.len(), ELEMENT_CHUNK, homes, home);
     by_runs((hulls, elements), elements.len(), runs, &write);
-}
-
-/// Per-chunk outputs of items in chunks of `chunk`, cut where the items are cut (at a
-/// multiple of `chunk`, or at their end).
-pub(crate) struct PerChunk<'a, T> {
-    pub(crate) outputs: &'a mut [T],
-    pub(crate) chunk: usize,
-}
-
-impl<T: Send> Piece for PerChunk<'_, T> {
-    fn split_at(self, at: usize) -> (Self, Self) {
-        let (a, b) = self.outputs.split_at_mut(at.div_ceil(self.chunk));
-        (PerChunk { outputs: a, chunk: self.chunk }, PerChunk { outputs: b, chunk: self.chunk })
-    }
 }
 
 #[cfg(test)]

@@ -212,6 +212,20 @@ impl<A: Piece, B: Piece> Piece for (A, B) {
     }
 }
 
+/// Per-chunk outputs of items in chunks of `chunk`, cut where the items are cut (at a
+/// multiple of `chunk`, or at their end).
+pub(crate) struct PerChunk<'a, T> {
+    pub(crate) outputs: &'a mut [T],
+    pub(crate) chunk: usize,
+}
+
+impl<T: Send> Piece for PerChunk<'_, T> {
+    fn split_at(self, at: usize) -> (Self, Self) {
+        let (a, b) = self.outputs.split_at_mut(at.div_ceil(self.chunk));
+        (PerChunk { outputs: a, chunk: self.chunk }, PerChunk { outputs: b, chunk: self.chunk })
+    }
+}
+
 /// Runs `task` once per home of `homes` homes, with that home's pieces of `all` (items
 /// `runs[0].0..end`; `runs` the first item and home of each run, in item order), each with
 /// its first item: the homes halved recursively by `rayon::join`, the first half on this

@@ -9,7 +9,7 @@
 //! damped as `aᵢ ← aᵢ·(1 − λ·sign(aᵢ·(vᵢ + aᵢ·dt/2)))`. A blocked DOF keeps its velocity
 //! component (0, or an imposed value) and feels neither force nor gravity.
 
-use crate::homes::{in_homes, Homes, Piece, Pieces, Runs};
+use crate::homes::{in_homes, Homes, PerChunk, Pieces, Runs};
 use crate::integrator_lanes::{leapfrog_four, Chunk, Kick, LaneSums};
 use crate::parallel::MAX_CHUNKS_PER_TASK;
 pub use crate::step_work::StepWork;
@@ -184,19 +184,22 @@ fn leapfrog_step_lanes(
             let work = step_chunk(chunk, &lanes, four);
             (work, check(c, chunk))
         };
-        let out = ChunkOutputs { first: 0, works: parts, flags: checks.flags };
+        let (works, flags) = (&mut parts[..], &mut checks.flags[..]);
         if homes.count() > 1 && homes.len() == n {
             // every home's chunks on one task, as the step's other loops share the particles
             let mut runs = Runs::new();
             homes.item_runs(n, CHUNK, &mut runs);
-            let all = Stepped { chunk: all, out };
-            in_homes(all, &runs, n, homes.count(), &|pieces: Pieces<Stepped<'_>>| {
-                for (_, p) in pieces {
-                    step_chunks(p.chunk, p.out, &step);
+            let outputs = (
+                PerChunk { outputs: works, chunk: CHUNK },
+                PerChunk { outputs: flags, chunk: CHUNK },
+            );
+            in_homes((all, outputs), &runs, n, homes.count(), &|pieces: Pieces<Stepped<'_>>| {
+                for (first, (chunk, (works, flags))) in pieces {
+                    step_chunks(chunk, first / CHUNK, works.outputs, flags.outputs, &step);
                 }
             });
         } else {
-            step_chunks(all, out, &step);
+            step_chunks(all, 0, works, flags, &step);
         }
     }
     let mut total = StepWork::default();
@@ -206,37 +209,20 @@ fn leapfrog_step_lanes(
     total
 }
 
-/// Each chunk's energy terms and checks' answers, from chunk `first` on.
-struct ChunkOutputs<'a> {
+/// Particles of whole chunks (runs start at multiples of [`CHUNK`]) with their chunks'
+/// energy terms and checks' answers.
+type Stepped<'a> = (Chunk<'a>, (PerChunk<'a, StepWork>, PerChunk<'a, ChunkCheck>));
+
+/// Steps `all` (the particles of chunks `first..`, in chunks of [`CHUNK`]), its chunks in
+/// parallel in tasks of at most [`MAX_CHUNKS_PER_TASK`], each chunk's energy terms and
+/// checks' answers into `works` and `flags`.
+fn step_chunks<F>(
+    all: Chunk<'_>,
     first: usize,
-    works: &'a mut [StepWork],
-    flags: &'a mut [ChunkCheck],
-}
-
-/// Particles of whole chunks and their chunks' outputs.
-struct Stepped<'a> {
-    chunk: Chunk<'a>,
-    out: ChunkOutputs<'a>,
-}
-
-impl Piece for Stepped<'_> {
-    /// The first `at` particles (a multiple of [`CHUNK`], or all) and the others.
-    fn split_at(self, at: usize) -> (Self, Self) {
-        let (a, b) = self.chunk.split_at(at);
-        let mid = at.div_ceil(CHUNK);
-        let (works, works_b) = self.out.works.split_at_mut(mid);
-        let (flags, flags_b) = self.out.flags.split_at_mut(mid);
-        let first_b = self.out.first + mid;
-        let out_a = ChunkOutputs { first: self.out.first, works, flags };
-        let out_b = ChunkOutputs { first: first_b, works: works_b, flags: flags_b };
-        (Stepped { chunk: a, out: out_a }, Stepped { chunk: b, out: out_b })
-    }
-}
-
-/// Steps `all` (the particles of chunks `out.first..`, in chunks of [`CHUNK`]), its chunks
-/// in parallel in tasks of at most [`MAX_CHUNKS_PER_TASK`].
-fn step_chunks<F>(all: Chunk<'_>, out: ChunkOutputs<'_>, step: &F)
-where
+    works: &mut [StepWork],
+    flags: &mut [ChunkCheck],
+    step: &F,
+) where
     F: Fn(usize, &mut Chunk<'_>) -> (StepWork, ChunkCheck) + Sync,
 {
     let Chunk { pos, vel, ori, ang, mass, inertia, f, t, blocked } = all;
@@ -250,15 +236,15 @@ where
         blocked.par_chunks(CHUNK),
         f.par_chunks(CHUNK),
         t.par_chunks(CHUNK),
-        out.works.par_iter_mut(),
-        out.flags.par_iter_mut(),
+        works.par_iter_mut(),
+        flags.par_iter_mut(),
     )
         .into_par_iter()
         .enumerate()
         .with_max_len(MAX_CHUNKS_PER_TASK)
         .for_each(|(c, (pos, vel, ori, ang, mass, inertia, blocked, f, t, work, flag))| {
             let mut chunk = Chunk { pos, vel, ori, ang, mass, inertia, f, t, blocked };
-            (*work, *flag) = step(out.first + c, &mut chunk);
+            (*work, *flag) = step(first + c, &mut chunk);
         });
 }
 

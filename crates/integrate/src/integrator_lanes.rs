@@ -13,6 +13,7 @@
 //! the rotation of a particle whose rotations are all blocked and at rest, a lane past the
 //! batch) is made +0 by a select, which leaves a sum as it is.
 
+use crate::homes::Piece;
 use crate::step_work::StepWork;
 use crate::turn::{half_turn_series, turn_quaternion, SERIES_TURN};
 use flexdem_elements::Dofs;
@@ -75,6 +76,12 @@ pub(crate) struct Chunk<'a> {
     pub(crate) t: &'a [Vec3],
     /// Each particle's blocked DOFs.
     pub(crate) blocked: &'a [Dofs],
+}
+
+impl Piece for Chunk<'_> {
+    fn split_at(self, at: usize) -> (Self, Self) {
+        Chunk::split_at(self, at)
+    }
 }
 
 impl<'a> Chunk<'a> {
