@@ -98,9 +98,9 @@ impl ContactPipeline {
         // by the home of each chunk's first contact's first particle (`home_loops.rs`)
         let shared_homes = shared(homes, model).then_some(homes);
         let len = contacts.list.len();
-        let firsts = &contacts.list;
+        let list = &contacts.list;
         let home = |c: usize| {
-            let first = firsts[c * LAW_CHUNK].site1.nodes[0] as usize;
+            let first = list[c * LAW_CHUNK].site1.nodes[0] as usize;
             shared_homes.map_or(0, |h| h.home_of(first))
         };
         let runs = chunk_home_runs(len, LAW_CHUNK, shared_homes, home);

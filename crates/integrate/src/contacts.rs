@@ -13,10 +13,8 @@ use crate::contact::{
 use crate::contact_list::Contacts;
 use crate::dashpots::account_ended_springs;
 use crate::gather::LoadIndex;
-use crate::home_loops::{
-    by_runs, chunk_home_runs, element_particle, shared, write_hulls, PerChunk,
-};
-use crate::homes::Homes;
+use crate::home_loops::{by_runs, chunk_home_runs, element_particle, shared, write_hulls};
+use crate::homes::{Homes, PerChunk};
 use crate::offsets::continued_overlap;
 use crate::pair_parts::PairParts;
 use crate::pair_passes::PairScratch;

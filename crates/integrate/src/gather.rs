@@ -255,8 +255,8 @@ impl LoadIndex {
 /// over the homes' ranges of particles (`homes.rs`: those the leapfrog steps on the same
 /// thread; without homes as many equal ranges as there are threads), each home's ranges
 /// zeroed, then given the loads on their particles by a scan of every contact's nodes (24
-/// bytes a contact; a load is read only by its home). Without an index: for the PFacet membrane of 10⁵ elements under
-/// spheres (9 300 contacts, no pair), the index of the general loads (a counting sort on one
+/// bytes a contact; a load is read only by its home). Without an index: for the PFacet
+/// membrane of 10⁵ elements under spheres (9 300 contacts, no pair), the index of the general loads (a counting sort on one
 /// thread) and the gather per particle took 195 and 274 µs of a 2-thread step.
 pub(crate) fn write_general_loads(
     force: &mut [Vec3],
@@ -267,7 +267,7 @@ pub(crate) fn write_general_loads(
 ) {
     let n = force.len().min(torque.len());
     let mut runs = Runs::new();
-    let count = if homes.count() > 1 && homes.len() == n {
+    let count = if homes.shares(n) && homes.len() == n {
         // the ranges of the step's homes: the threads write the sums the leapfrog reads
         homes.item_runs(n, STEP_CHUNK, &mut runs);
         homes.count()

@@ -1,12 +1,12 @@
 //! The general contacts' loops shared among the threads by the step's homes (`homes.rs`):
 //! the elements' hulls by the home of each chunk's first element, the detection by that of
 //! each chunk's first candidate pair, the contact law by that of each chunk's first contact.
-//! An element's, a pair's or a contact's home is that of its first particle: a free sphere,
-//! or a structure's first node ([`element_particle`]); the thread that steps a particle
-//! writes the hulls that read it, and meets the contacts of the spheres it steps. The items,
+//! An element's or a pair's home is that of its first particle: a free sphere, or a
+//! structure's first node ([`element_particle`]); a contact's, that of the first node of its
+//! first site (a free sphere before a structure); the thread that steps a particle writes the
+//! hulls that read it, and meets the contacts of the spheres it steps. The items,
 //! what each computes and where it is written do not depend on the homes.
 
-pub(crate) use crate::homes::PerChunk;
 use crate::homes::{chunk_runs, in_homes, Homes, Piece, Pieces, Runs};
 use crate::parallel::MIN_PARALLEL_CHEAP;
 use crate::prefilter::{write_hull, Hull};
@@ -29,7 +29,7 @@ pub(crate) fn element_particle(model: &Model, e: Element) -> usize {
 
 /// Whether `homes` share the particles of `model` among more than one home.
 pub(crate) fn shared(homes: &Homes, model: &Model) -> bool {
-    homes.count() > 1 && homes.len() == model.particles.len()
+    homes.shares(model.particles.len()) && homes.len() == model.particles.len()
 }
 
 /// The runs of `len` items in chunks of `chunk` by the home of each chunk (`home(c)`), with
@@ -92,6 +92,7 @@ pub(crate) fn write_hulls(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::homes::PerChunk;
 
     /// Cut by the homes of their chunks, every chunk's output is written once, by the task
     /// given that chunk's items, as on one thread.

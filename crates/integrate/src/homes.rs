@@ -1,4 +1,6 @@
-//! Which thread steps which particles, the same in every parallel loop of a step.
+//! Which thread steps which particles, the same in every parallel loop of a step (but the
+//! leapfrog's after a step of the pairs in parts, which follows the parts:
+//! [`Homes::set_by_parts`]).
 //!
 //! A line of memory that one core writes and another reads costs a round trip between the
 //! two; on a host that puts the two cores on two AMD core complexes, through the I/O die
@@ -25,15 +27,19 @@ use flexdem_geom::Vec3;
 use smallvec::SmallVec;
 use std::ops::Range;
 
-/// Runs of items: each one's first item and home, in item order (on the stack up to 8: two
-/// kinds of particles on four threads).
-pub(crate) type Runs = SmallVec<[(usize, usize); 8]>;
+/// Runs or pieces a loop keeps on the stack: the pairs' parts of 4 threads
+/// (`pair_parts::PARTS_PER_THREAD` each), or two kinds of particles on 8 threads. Beyond, a
+/// step allocates their lists.
+const ON_STACK: usize = 16;
+
+/// Runs of items: each one's first item and home, in item order.
+pub(crate) type Runs = SmallVec<[(usize, usize); ON_STACK]>;
 
 /// A home's pieces of a loop's items, each with its first item, in item order.
-pub(crate) type Pieces<P> = SmallVec<[(usize, P); 8]>;
+pub(crate) type Pieces<P> = SmallVec<[(usize, P); ON_STACK]>;
 
 /// The pieces of a loop's items with their first items and homes.
-type HomePieces<P> = SmallVec<[(usize, usize, P); 8]>;
+type HomePieces<P> = SmallVec<[(usize, usize, P); ON_STACK]>;
 
 /// Per-particle force and torque sums, cut by home.
 pub(crate) type Sums<'a> = (&'a mut [Vec3], &'a mut [Vec3]);
@@ -97,6 +103,7 @@ impl Homes {
     /// particles are shared among the threads as the parts were (`part_step::step_runs`
     /// halves them as [`in_homes`] does).
     pub(crate) fn set_by_parts(&mut self, firsts: &[usize]) {
+        debug_assert!(firsts.first() == Some(&0) && firsts.windows(2).all(|w| w[0] <= w[1]));
         let n = firsts.last().copied().unwrap_or(0);
         self.clear(firsts.len().saturating_sub(1).max(1));
         for (k, &first) in firsts[..firsts.len().saturating_sub(1)].iter().enumerate() {
@@ -122,6 +129,11 @@ impl Homes {
     }
 
     fn finish(&mut self, n: usize) {
+        // (runs left empty at the end: none)
+        while self.starts.len() > 1 && self.starts.last() == Some(&n) {
+            self.starts.pop();
+            self.home.pop();
+        }
         if self.starts.first() != Some(&0) {
             // (no particle: one empty run)
             self.clear(self.count);
@@ -129,6 +141,12 @@ impl Homes {
             self.home.push(0);
         }
         self.starts.push(n);
+    }
+
+    /// Whether these homes share the first `n` particles among more than one home (they
+    /// cover at least `n`: those of this step, or the nodes before free spheres).
+    pub(crate) fn shares(&self, n: usize) -> bool {
+        self.count > 1 && n > 0 && self.len() >= n
     }
 
     /// The number of homes.
@@ -160,7 +178,7 @@ impl Homes {
     pub(crate) fn item_runs(&self, len: usize, grain: usize, runs: &mut Runs) {
         runs.clear();
         for (r, h) in self.runs().filter(|(r, _)| r.start < len) {
-            let start = if r.start == 0 { 0 } else { nearest_multiple(r.start, grain, len) };
+            let start = nearest_multiple(r.start, grain, len);
             if runs.last().is_some_and(|&(s, _)| s == start) {
                 runs.pop();
             }
@@ -253,6 +271,9 @@ where
     P: Piece,
     F: Fn(Pieces<P>) + Sync,
 {
+    if pieces.is_empty() {
+        return;
+    }
     if homes.len() <= 1 || pieces.iter().all(|p| p.1 == pieces[0].1) {
         task(pieces.into_iter().map(|(start, _, p)| (start, p)).collect());
         return;

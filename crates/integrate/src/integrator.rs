@@ -185,7 +185,7 @@ fn leapfrog_step_lanes(
             (work, check(c, chunk))
         };
         let (works, flags) = (&mut parts[..], &mut checks.flags[..]);
-        if homes.count() > 1 && homes.len() == n {
+        if homes.shares(n) && homes.len() == n {
             // every home's chunks on one task, as the step's other loops share the particles
             let mut runs = Runs::new();
             homes.item_runs(n, CHUNK, &mut runs);
@@ -495,8 +495,8 @@ mod tests {
     use flexdem_elements::{Particle, ParticleKind};
 
     /// Stepped home by home on two or three threads, with the pairs' parts of any sizes (empty
-    /// ones too) or blocks of particles cut by thread, the particles get the same bits, the energy terms and the checks' answers the
-    /// same values as in one run over all the chunks.
+    /// ones too) or blocks of particles cut by thread, the particles get the same bits, the
+    /// energy terms and the checks' answers the same values as in one run over all the chunks.
     #[test]
     fn chunks_stepped_by_their_homes_give_the_same_bits() {
         let n = 9 * CHUNK + 100;

@@ -2,7 +2,8 @@
 //! (model.md §3), updated in parallel each step, their node loads summed per node in a fixed
 //! order so that the result does not depend on the number of threads.
 
-use crate::homes::{chunk_runs, in_homes, Homes, Piece, Pieces, Runs, Sums};
+use crate::home_loops::{by_runs, chunk_home_runs};
+use crate::homes::{in_homes, Homes, Piece, Pieces, Runs, Sums};
 use crate::integrator::CHUNK as STEP_CHUNK;
 use crate::parallel::MAX_CHUNKS_PER_TASK;
 use flexdem_contact::link_lanes::{update_link_lanes, LaneNodes, LANES};
@@ -293,9 +294,9 @@ impl Links {
         }
         let (classes, springs) = (&self.classes, &self.springs);
         // each chunk's plastic states, or none (no plastic class: see `zero` below); a
-        // plastic vector of another length (which `check_against` refuses) would leave links
-        // out of the zip
-        debug_assert!(self.plastic.is_empty() || self.plastic.len() == self.nodes.len());
+        // plastic vector of another length is refused by `check_against` when links are
+        // read, and would be cut short by the chunks' split
+        assert!(self.plastic.is_empty() || self.plastic.len() == self.nodes.len());
         // one chunk's links (`plastic`: their plastic states, or none when no class is
         // plastic), its sums
         let step_chunk = |nodes: &[[u32; 2]],
@@ -435,16 +436,11 @@ impl Links {
                     );
             };
             let n = self.nodes.len();
-            if homes.count() > 1 && homes.len() == p.len() {
-                let mut runs = Runs::new();
-                let first_node = |c: usize| self.nodes[c * CHUNK][0] as usize;
-                chunk_runs(chunks, CHUNK, |c| homes.home_of(first_node(c)), &mut runs);
-                in_homes(all, &runs, n, homes.count(), &|pieces: Pieces<LinkChunks<'_>>| {
-                    pieces.into_iter().for_each(|(_, l)| in_chunks(l));
-                });
-            } else {
-                in_chunks(all);
-            }
+            // by the home of each chunk's first node
+            let shared = (homes.shares(p.len()) && homes.len() == p.len()).then_some(homes);
+            let home = |c: usize| homes.home_of(self.nodes[c * CHUNK][0] as usize);
+            let runs = chunk_home_runs(n, CHUNK, shared, home);
+            by_runs(all, n, runs, &|_, l| in_chunks(l));
         }
         self.chunk_sums.iter().fold(LinkUpdate::default(), |a, c| LinkUpdate {
             events: LinkEvents {
@@ -525,7 +521,7 @@ impl Links {
                 });
         };
         let (force, torque) = (&mut force[..n], &mut torque[..n]);
-        if homes.count() > 1 && homes.len() >= n && n > 0 {
+        if homes.shares(n) {
             let mut runs = Runs::new();
             homes.item_runs(n, STEP_CHUNK, &mut runs);
             in_homes((force, torque), &runs, n, homes.count(), &|pieces: Pieces<Sums<'_>>| {

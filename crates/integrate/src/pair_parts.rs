@@ -18,8 +18,9 @@
 //! other pairs and its leapfrog. (In one part, the packing's floor, which every tenth
 //! sphere of 10⁵ touches, had one thread read and load half of the spheres of the other at
 //! every step: on a host that put the two cores on two AMD core complexes, where a line one
-//! core reads and the other writes goes through the I/O die, the other thread's leapfrog
-//! took 1.5 times as long; `bench/README.md`, twenty-third session.)
+//! core reads and the other writes goes through the I/O die, the leapfrog stage took 1.35
+//! times as long as with a shared L3, 1.518 against 1.125 ms; `bench/README.md`,
+//! twenty-third session.)
 //!
 //! With two parts of a packing of 10⁵ spheres in Morton order, 1 % of the spheres get loads
 //! from both parts and 14 % touch a wall: the gather of every particle's loads, which the
@@ -204,7 +205,10 @@ impl PairParts {
                 _ => false,
             })
         };
-        let summed: Vec<bool> = (0..keys.len().div_ceil(PAIR_CHUNK)).map(chunk_in_part).collect();
+        // (its memory kept from split to split)
+        let mut summed = std::mem::take(&mut self.summed_in_part);
+        summed.clear();
+        summed.extend((0..keys.len().div_ceil(PAIR_CHUNK)).map(chunk_in_part));
         self.summed_in_part = summed;
         self.built_for = built_for;
     }

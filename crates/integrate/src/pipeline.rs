@@ -84,7 +84,8 @@ impl Pipeline {
         }
     }
 
-    /// Cuts the particles' blocks at the pool's thread count for this step's loops ([`Pipeline::homes`]).
+    /// Cuts the particles' blocks at the pool's thread count for this step's loops
+    /// ([`Pipeline::homes`]).
     pub(crate) fn set_homes(&mut self) {
         self.homes.set_by_blocks(&self.blocks, rayon::current_num_threads());
     }
